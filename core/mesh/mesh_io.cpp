@@ -1,0 +1,243 @@
+// The only translation unit that includes CGAL's IO headers (they are slow to compile).
+#include "mesh/mesh_io.hpp"
+
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <climits>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <istream>
+#include <sstream>
+#include <vector>
+
+#include "common/error.hpp"
+
+namespace progsim {
+namespace {
+
+using CgalPoint = CGAL::Simple_cartesian<double>::Point_3;
+using Polygons = std::vector<std::vector<std::size_t>>;
+
+/// A point read from OBJ text. Unlike CGAL's point, it accepts "nan" and "inf", so that
+/// such vertices reach validate_mesh, which names them, instead of failing the parse.
+struct ObjPoint {
+  double xyz[3];
+
+  double operator[](int k) const { return xyz[k]; }
+
+  friend std::istream& operator>>(std::istream& is, ObjPoint& p) {
+    for (double& x : p.xyz) {
+      std::string token;
+      is >> token;
+      const char* first = token.data() + (!token.empty() && token[0] == '+');
+      const char* last = token.data() + token.size();
+      const auto [end, error] = std::from_chars(first, last, x);
+      if (token.empty() || error != std::errc() || end != last) is.setstate(std::ios::failbit);
+    }
+    return is;
+  }
+};
+
+enum class Format { obj, off, ply };
+
+/// The format named by the extension of `path` (any letter case); io_error otherwise.
+Format format_of(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".obj") return Format::obj;
+  if (ext == ".off") return Format::off;
+  if (ext == ".ply") return Format::ply;
+  fail(Status::io_error, path + ": unknown mesh format '" + ext + "' (known: .obj, .off, .ply)");
+}
+
+/// The next whitespace-separated token of an OFF file outside "#" comments ("" at the end).
+std::string next_off_token(std::istream& in) {
+  std::string token;
+  while (in >> token) {
+    if (token[0] != '#') return token;
+    std::getline(in, token);
+  }
+  return "";
+}
+
+/// CGAL's OFF reader allocates the element counts of the header before reading any element,
+/// so a corrupt header could claim gigabytes. Rejects counts that the file is too short to
+/// hold: in text, a vertex takes at least 6 bytes ("0 0 0\n") and a face at least 2 ("0\n").
+/// Headers this check does not understand (binary, nOFF) are left to CGAL.
+void check_off_header_counts(const std::string& path) {
+  std::ifstream in(path);
+  const std::string keyword = next_off_token(in);
+  if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0 || keyword[0] == 'n')
+    return;
+  const std::string vertices = next_off_token(in);
+  const std::string faces = next_off_token(in);
+  std::uintmax_t nv = 0, nf = 0;
+  if (std::from_chars(vertices.data(), vertices.data() + vertices.size(), nv).ec != std::errc() ||
+      std::from_chars(faces.data(), faces.data() + faces.size(), nf).ec != std::errc())
+    return;  // "BINARY" or not a number: CGAL decides
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (error) return;
+  if (nv <= size / 6 && nf <= size / 2 && 6 * nv + 2 * nf <= size) return;
+  fail(Status::io_error, path + ": the header declares " + std::to_string(nv) + " vertices and " +
+                             std::to_string(nf) + " faces, more than the file's " +
+                             std::to_string(size) +
+                             " bytes can hold (truncated file or corrupt header)");
+}
+
+/// CGAL's PLY reader dereferences the last element when it meets a "property" line, and
+/// crashes if no "element" line came before: reject such headers first.
+void check_ply_header_order(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  bool seen_element = false;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "end_header") return;
+    seen_element = seen_element || keyword == "element";
+    if (keyword == "property" && !seen_element)
+      fail(Status::io_error, path +
+                                 ": cannot parse the file as PLY (a property comes before "
+                                 "any element in the header)");
+  }
+}
+
+/// Rejects headers that would make CGAL's readers misbehave instead of failing cleanly.
+void check_header(const std::string& path, Format format) {
+  if (format == Format::off) check_off_header_counts(path);
+  if (format == Format::ply) check_ply_header_order(path);
+}
+
+/// What a parse failure means, for the message.
+std::string parse_failure(Format format) {
+  switch (format) {
+    case Format::obj:
+      return "cannot parse the file as OBJ (malformed or truncated)";
+    case Format::off:
+      // CGAL's OFF reader reports an out-of-range face index as a parse failure.
+      return "cannot parse the file as OFF (malformed or truncated, or a face index out of "
+             "range)";
+    case Format::ply:
+      return "cannot parse the file as PLY (malformed or truncated)";
+  }
+  return "cannot parse the file";
+}
+
+/// Points and polygons as read from a file, before any checks.
+struct Soup {
+  Positions vertices;
+  Polygons polygons;
+};
+
+/// Copies CGAL-side points (anything with p[0..2]) into a (|V| × 3) array.
+template <class Point>
+Positions to_positions(const std::vector<Point>& points) {
+  Positions vertices(points.size(), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int k = 0; k < 3; ++k) vertices(i, k) = points[i][k];
+  return vertices;
+}
+
+/// Reads with CGAL. Returns false on a parse failure; `soup` then holds what was read so far.
+bool read_soup(const std::string& path, Format format, Soup& soup) {
+  // CGAL's PLY reader would print to std::cerr by default.
+  const auto quiet = CGAL::parameters::verbose(false);
+  if (format == Format::obj) {
+    std::vector<ObjPoint> points;
+    const bool ok = CGAL::IO::read_OBJ(path, points, soup.polygons, quiet);
+    soup.vertices = to_positions(points);
+    return ok;
+  }
+  std::vector<CgalPoint> points;
+  const bool ok = CGAL::IO::read_polygon_soup(path, points, soup.polygons, quiet);
+  soup.vertices = to_positions(points);
+  return ok;
+}
+
+/// invalid_mesh if a polygon references a vertex that does not exist.
+void check_index_range(const std::string& path, const Soup& soup) {
+  const std::size_t n = soup.vertices.rows();
+  for (std::size_t f = 0; f < soup.polygons.size(); ++f) {
+    for (const std::size_t v : soup.polygons[f]) {
+      if (v < n) continue;
+      // Negative indices in the file wrap around to huge unsigned values: print them signed.
+      fail(Status::invalid_mesh, path + ": face " + std::to_string(f) + " references vertex " +
+                                     std::to_string(static_cast<long long>(v)) +
+                                     " (counting from 0), but the file has " + std::to_string(n) +
+                                     " vertices");
+    }
+  }
+}
+
+/// invalid_mesh for polygons that are not triangles or meshes too large for int indices.
+void check_triangles(const std::string& path, const Soup& soup) {
+  if (soup.vertices.rows() > INT_MAX || soup.polygons.size() > INT_MAX)
+    fail(Status::invalid_mesh,
+         path + ": more than " + std::to_string(INT_MAX) + " vertices or faces");
+  for (std::size_t f = 0; f < soup.polygons.size(); ++f) {
+    const std::size_t n = soup.polygons[f].size();
+    if (n == 3) continue;
+    fail(Status::invalid_mesh, path + ": face " + std::to_string(f) + " has " + std::to_string(n) +
+                                   " vertices, but progsim needs triangles (triangulate it)");
+  }
+}
+
+Faces to_faces(const Polygons& polygons) {
+  Faces faces(polygons.size(), 3);
+  for (std::size_t f = 0; f < polygons.size(); ++f)
+    for (int k = 0; k < 3; ++k) faces(f, k) = static_cast<int>(polygons[f][k]);
+  return faces;
+}
+
+}  // namespace
+
+TriangleMesh read_mesh(const std::string& path) {
+  const Format format = format_of(path);
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    fail(Status::io_error, path + ": no such file (or not a regular file)");
+  if (!std::ifstream(path)) fail(Status::io_error, path + ": cannot open the file for reading");
+  check_header(path, format);
+  Soup soup;
+  bool ok = false;
+  try {
+    ok = read_soup(path, format, soup);
+  } catch (const std::exception& e) {  // CGAL assertions, allocation failures
+    fail(Status::io_error, path + ": " + parse_failure(format) + ": " + e.what());
+  }
+  // CGAL's OBJ reader rejects some out-of-range indices itself, after reading everything:
+  // name the face even then.
+  check_index_range(path, soup);
+  if (!ok) fail(Status::io_error, path + ": " + parse_failure(format));
+  check_triangles(path, soup);
+  return TriangleMesh{soup.vertices, to_faces(soup.polygons)};
+}
+
+void write_mesh(const std::string& path, const TriangleMesh& mesh) {
+  format_of(path);  // rejects unknown extensions before CGAL guesses
+  std::vector<CgalPoint> points;
+  points.reserve(mesh.num_vertices());
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    points.emplace_back(mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2));
+  Polygons polygons(mesh.num_faces());
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    polygons[f].assign(mesh.faces.row(f).data(), mesh.faces.row(f).data() + 3);
+  bool ok = false;
+  try {
+    ok = CGAL::IO::write_polygon_soup(path, points, polygons,
+                                      CGAL::parameters::stream_precision(17));
+  } catch (const std::exception& e) {
+    fail(Status::io_error, path + ": cannot write the file (" + e.what() + ")");
+  }
+  if (!ok) fail(Status::io_error, path + ": cannot write the file");
+}
+
+}  // namespace progsim
