@@ -1,0 +1,39 @@
+#pragma once
+/// @file The interface every energy term implements. A term knows nothing of levels,
+/// prolongation or which DOFs are fixed: the Problem composes terms and reduces.
+#include <cstddef>
+
+#include "common/types.hpp"
+
+namespace progsim {
+
+/// One additive potential E_k(x) of the incremental potential (DESIGN.md §2).
+/// x is the stacked DOF vector (3|V|). Implementations evaluate in parallel (OpenMP) and
+/// do not allocate after construction. Not thread-safe: one caller at a time.
+class EnergyTerm {
+ public:
+  virtual ~EnergyTerm() = default;
+
+  /// Stable name used in counters and logs ("membrane", "bending", ...).
+  virtual const char* name() const = 0;
+
+  /// E_k(x) (joules).
+  virtual double value(const Vector& x) const = 0;
+
+  /// g += ∇E_k(x); g has size 3|V|.
+  virtual void add_gradient(const Vector& x, Vector& g) const = 0;
+
+  /// Number of Hessian triplets this term produces; constant over the term's lifetime.
+  virtual std::size_t hessian_entry_count() const = 0;
+
+  /// Writes the DOF row and column of each Hessian triplet (called once, at set-up).
+  /// Both arrays have hessian_entry_count() entries. Duplicates are summed.
+  virtual void hessian_pattern(int* rows, int* cols) const = 0;
+
+  /// Writes the value of each Hessian triplet, in the order of hessian_pattern().
+  /// With project_psd every element block is projected to the nearest positive
+  /// semi-definite matrix (per-element eigenvalue clamp, projected Newton).
+  virtual void hessian_values(const Vector& x, bool project_psd, double* values) const = 0;
+};
+
+}  // namespace progsim

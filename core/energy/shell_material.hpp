@@ -1,0 +1,32 @@
+#pragma once
+/// @file Material of a thin shell and the moduli derived from it.
+
+namespace progsim {
+
+/// Isotropic shell material. SI units.
+struct ShellMaterial {
+  double youngs_modulus = 1e6;  ///< E, Pa
+  double poisson_ratio = 0.3;   ///< ν, dimensionless, in [0, 0.5)
+  double thickness = 1e-3;      ///< t, m
+  double density = 200.0;       ///< ρ, kg/m³ (volumetric; areal density is ρ t)
+};
+
+/// Shear modulus μ = E / (2(1+ν)).
+inline double shear_modulus(const ShellMaterial& m) {
+  return m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+}
+
+/// Plane-stress Lamé λ = E ν / (1 − ν²) (membrane, PSQ footnote 1 / C-IPC §4).
+inline double plane_stress_lambda(const ShellMaterial& m) {
+  const double nu = m.poisson_ratio;
+  return m.youngs_modulus * nu / (1.0 - nu * nu);
+}
+
+/// Hinge bending modulus k = E t³ / (24(1 − ν²)) (DESIGN.md §2, Grinspun et al. 2003).
+inline double hinge_bending_modulus(const ShellMaterial& m) {
+  const double t = m.thickness;
+  const double nu = m.poisson_ratio;
+  return m.youngs_modulus * t * t * t / (24.0 * (1.0 - nu * nu));
+}
+
+}  // namespace progsim

@@ -1,0 +1,98 @@
+#include "support/energy_checks.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <random>
+#include <vector>
+
+namespace progsim::test_support {
+
+Vector finite_difference_gradient(const EnergyTerm& term, const Vector& x, double h) {
+  Vector g(x.size());
+  Vector xp = x;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    xp[i] = x[i] + h;
+    const double ep = term.value(xp);
+    xp[i] = x[i] - h;
+    const double em = term.value(xp);
+    xp[i] = x[i];
+    g[i] = (ep - em) / (2.0 * h);
+  }
+  return g;
+}
+
+Vector analytic_gradient(const EnergyTerm& term, const Vector& x) {
+  Vector g = Vector::Zero(x.size());
+  term.add_gradient(x, g);
+  return g;
+}
+
+Eigen::MatrixXd finite_difference_hessian(const EnergyTerm& term, const Vector& x, double h) {
+  const Eigen::Index n = x.size();
+  Eigen::MatrixXd hess(n, n);
+  Vector xp = x;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    xp[i] = x[i] + h;
+    const Vector gp = analytic_gradient(term, xp);
+    xp[i] = x[i] - h;
+    const Vector gm = analytic_gradient(term, xp);
+    xp[i] = x[i];
+    hess.col(i) = (gp - gm) / (2.0 * h);
+  }
+  return hess;
+}
+
+Eigen::MatrixXd assembled_hessian(const EnergyTerm& term, const Vector& x, bool project_psd) {
+  const std::size_t m = term.hessian_entry_count();
+  std::vector<int> rows(m), cols(m);
+  std::vector<double> values(m);
+  term.hessian_pattern(rows.data(), cols.data());
+  term.hessian_values(x, project_psd, values.data());
+  Eigen::MatrixXd hess = Eigen::MatrixXd::Zero(x.size(), x.size());
+  for (std::size_t k = 0; k < m; ++k) hess(rows[k], cols[k]) += values[k];
+  return hess;
+}
+
+double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double floor) {
+  const double scale = std::max(b.cwiseAbs().maxCoeff(), floor);
+  return (a - b).cwiseAbs().maxCoeff() / scale;
+}
+
+Mat3 random_rotation(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
+  return q.normalized().toRotationMatrix();
+}
+
+std::vector<ShellMaterial> varied_materials(int num_faces, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<ShellMaterial> materials(num_faces);
+  for (ShellMaterial& m : materials) {
+    m.youngs_modulus = 1e6 * (0.5 + unit(rng));
+    m.poisson_ratio = 0.45 * unit(rng);
+    m.thickness = 1e-3 * (0.5 + unit(rng));
+  }
+  return materials;
+}
+
+Vector perturbed(const Positions& p, double amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> noise(-amplitude, amplitude);
+  Vector x = as_dofs(p);
+  for (Eigen::Index i = 0; i < x.size(); ++i) x[i] += noise(rng);
+  return x;
+}
+
+Vector rigidly_moved(const Vector& x, const Mat3& r, const Vec3& t) {
+  Vector y(x.size());
+  for (Eigen::Index v = 0; v < x.size() / 3; ++v) y.segment<3>(3 * v) = r * x.segment<3>(3 * v) + t;
+  return y;
+}
+
+Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& h) {
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(h, Eigen::EigenvaluesOnly).eigenvalues();
+}
+
+}  // namespace progsim::test_support

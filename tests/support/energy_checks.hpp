@@ -1,0 +1,43 @@
+#pragma once
+/// @file Test helpers that check an EnergyTerm against finite differences, independently of
+/// the term's own derivative code.
+#include <Eigen/Sparse>
+#include <vector>
+
+#include "energy/energy_term.hpp"
+#include "energy/shell_material.hpp"
+
+namespace progsim::test_support {
+
+/// ∇E by central differences of value() (step h per DOF).
+Vector finite_difference_gradient(const EnergyTerm& term, const Vector& x, double h);
+
+/// ∇²E by central differences of add_gradient() (step h per DOF), dense (3|V| × 3|V|).
+Eigen::MatrixXd finite_difference_hessian(const EnergyTerm& term, const Vector& x, double h);
+
+/// The term's analytic gradient (3|V|).
+Vector analytic_gradient(const EnergyTerm& term, const Vector& x);
+
+/// The term's Hessian assembled from its triplets, dense (3|V| × 3|V|).
+Eigen::MatrixXd assembled_hessian(const EnergyTerm& term, const Vector& x, bool project_psd);
+
+/// Max |a − b| / max(‖b‖∞, floor): relative error with an absolute floor.
+double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double floor);
+
+/// A random rotation matrix (uniform on SO(3)) from a seed.
+Mat3 random_rotation(unsigned seed);
+
+/// Materials that differ from face to face (E, ν, t drawn from a seed), so a mix-up of
+/// per-face data shows.
+std::vector<ShellMaterial> varied_materials(int num_faces, unsigned seed);
+
+/// The DOFs of p plus uniform noise in [−amplitude, amplitude] per coordinate.
+Vector perturbed(const Positions& p, double amplitude, unsigned seed);
+
+/// Rx + t applied to every vertex of x (3|V|).
+Vector rigidly_moved(const Vector& x, const Mat3& r, const Vec3& t);
+
+/// Eigenvalues of a symmetric matrix, ascending.
+Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& h);
+
+}  // namespace progsim::test_support
