@@ -1,0 +1,81 @@
+#pragma once
+/// @file A level's optimisation problem: a sum of energy terms over a DOF vector, some DOFs
+/// held fixed (Dirichlet handles). It assembles the reduced gradient and the reduced sparse
+/// Hessian the solver needs, with a sparsity pattern built once.
+#include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
+
+#include "energy/energy_term.hpp"
+#include "problem/term_stats.hpp"
+
+namespace progsim {
+
+/// E(x) = Σ_k E_k(x) with fixed DOFs eliminated. Terms are added, then finalize() builds the
+/// Hessian pattern; after that every evaluation is allocation-free and OpenMP-parallel.
+class Problem {
+ public:
+  using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+  /// @param num_dofs 3|V|
+  explicit Problem(int num_dofs);
+
+  /// Adds a term (before finalize()) and returns a reference to it.
+  template <class Term>
+  Term& add_term(std::unique_ptr<Term> term) {
+    Term& ref = *term;
+    add_term_impl(std::move(term));
+    return ref;
+  }
+
+  /// Marks DOFs as fixed (size num_dofs). Their values come from x; the solver never moves them.
+  void set_fixed_dofs(const std::vector<bool>& fixed);
+
+  /// Builds the reduced Hessian pattern. Call after the terms and fixed DOFs are set.
+  void finalize();
+
+  int num_dofs() const { return num_dofs_; }
+  /// Number of free DOFs (the size of reduced vectors).
+  int num_free() const { return static_cast<int>(free_to_full_.size()); }
+  bool is_fixed(int dof) const { return full_to_free_[dof] < 0; }
+
+  /// E(x).
+  double value(const Vector& x);
+  /// Full gradient ∇E(x) (3|V|) written into g; entries of fixed DOFs are zero.
+  void gradient(const Vector& x, Vector& g);
+  /// Reduced Hessian (free × free, lower triangle stored), per-element PSD-projected if asked.
+  /// The reference stays valid (pattern unchanged) until the next finalize().
+  const SparseMatrix& hessian(const Vector& x, bool project_psd);
+
+  /// reduced = full restricted to the free DOFs.
+  void restrict_to_free(const Vector& full, Vector& reduced) const;
+  /// full[free] = reduced, full[fixed] = 0.
+  void expand_from_free(const Vector& reduced, Vector& full) const;
+
+  /// Counters per term, in the order terms were added.
+  const std::vector<TermStats>& term_stats() const { return stats_; }
+  /// The term with the given name, or nullptr.
+  EnergyTerm* find_term(const std::string& name);
+  const std::vector<std::unique_ptr<EnergyTerm>>& terms() const { return terms_; }
+
+ private:
+  void add_term_impl(std::unique_ptr<EnergyTerm> term);
+  void build_reduction();
+  void build_hessian_pattern();
+
+  int num_dofs_;
+  bool finalized_ = false;
+  std::vector<bool> fixed_;
+  std::vector<int> full_to_free_;  // −1 for fixed DOFs
+  std::vector<int> free_to_full_;
+  std::vector<std::unique_ptr<EnergyTerm>> terms_;
+  std::vector<TermStats> stats_;
+  std::vector<std::size_t> entry_offsets_;  // per term, into entry_values_
+  std::vector<double> entry_values_;        // all terms' triplet values
+  // For each stored nonzero of the reduced Hessian, the triplets summed into it (CSR).
+  std::vector<int> nonzero_entry_offsets_;
+  std::vector<std::size_t> nonzero_entries_;
+  SparseMatrix hessian_;
+};
+
+}  // namespace progsim

@@ -1,0 +1,134 @@
+#include "solve/newton_solver.hpp"
+
+#include <cmath>
+
+#include "common/timer.hpp"
+
+namespace progsim {
+
+const char* stop_name(NewtonStop stop) {
+  switch (stop) {
+    case NewtonStop::converged:
+      return "converged";
+    case NewtonStop::max_iterations:
+      return "max_iterations";
+    case NewtonStop::line_search_failed:
+      return "line_search_failed";
+    case NewtonStop::non_finite:
+      return "non_finite";
+    case NewtonStop::factorization_failed:
+      return "factorization_failed";
+  }
+  return "unknown";
+}
+
+bool NewtonSolver::line_search(Problem& problem, const Vector& x, double energy, double slope,
+                               const NewtonSettings& settings, double& alpha, double& new_energy) {
+  for (int k = 0; k < settings.max_backtracks; ++k, alpha *= 0.5) {
+    trial_ = x + alpha * step_;
+    new_energy = problem.value(trial_);
+    if (std::isfinite(new_energy) && new_energy <= energy + settings.armijo * alpha * slope)
+      return true;  // Armijo condition
+  }
+  return false;
+}
+
+/// Assembles and factorizes the Hessian of this iteration per the projection policy.
+/// @return false when CHOLMOD failed even with a shift.
+bool NewtonSolver::factorize_hessian(Problem& problem, const Vector& x,
+                                     HessianProjection projection, bool try_exact,
+                                     NewtonReport& report) {
+  NewtonTimings& time = report.timings;
+  if (projection != HessianProjection::always && try_exact) {
+    const Problem::SparseMatrix* exact = nullptr;
+    {
+      ScopedTimer timer(time.assembly);
+      exact = &problem.hessian(x, false);
+    }
+    ScopedTimer timer(time.factorization);
+    if (cholesky_.factorize(*exact, projection == HessianProjection::never)) {
+      ++report.exact_steps;
+      report.max_shift = std::max(report.max_shift, cholesky_.shift());
+      return true;
+    }
+    if (projection == HessianProjection::never) return false;
+  }
+  const Problem::SparseMatrix* projected = nullptr;
+  {
+    ScopedTimer timer(time.assembly);
+    projected = &problem.hessian(x, true);
+  }
+  ScopedTimer timer(time.factorization);
+  if (!cholesky_.factorize(*projected)) return false;
+  report.max_shift = std::max(report.max_shift, cholesky_.shift());
+  return true;
+}
+
+NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSettings& settings,
+                                    double decrement_scale, double length) {
+  NewtonReport report;
+  NewtonTimings& time = report.timings;
+  if (analyzed_for_ != &problem || analyzed_size_ != problem.num_free()) {
+    cholesky_.analyze(problem.hessian(x, true));  // same pattern projected or not
+    analyzed_for_ = &problem;
+    analyzed_size_ = problem.num_free();
+  }
+  double energy = problem.value(x);
+  bool try_exact = true;
+  int failed_exact = 0;  // an indefinite problem (e.g. pressure) stops trying after 3
+  for (report.iterations = 0; report.iterations < settings.max_iterations; ++report.iterations) {
+    {
+      ScopedTimer timer(time.assembly);
+      problem.gradient(x, gradient_);
+      problem.restrict_to_free(gradient_, gradient_free_);
+    }
+    report.gradient_norm = gradient_free_.norm();
+    if (!std::isfinite(energy) || !std::isfinite(report.gradient_norm)) {
+      report.stop = NewtonStop::non_finite;
+      break;
+    }
+    const int exact_before = report.exact_steps;
+    if (!factorize_hessian(problem, x, settings.projection, try_exact, report)) {
+      report.stop = NewtonStop::factorization_failed;
+      break;
+    }
+    if (try_exact && report.exact_steps == exact_before) {
+      try_exact = false;
+      ++failed_exact;
+    }
+    {
+      ScopedTimer timer(time.solve);
+      cholesky_.solve(-gradient_free_, step_free_);
+      problem.expand_from_free(step_free_, step_);
+    }
+    report.step_norm = step_.lpNorm<Eigen::Infinity>();
+    if (!std::isfinite(report.step_norm)) {
+      report.stop = NewtonStop::non_finite;
+      break;
+    }
+    if (report.step_norm / decrement_scale < settings.tolerance * length) {  // C-IPC stop rule
+      report.stop = NewtonStop::converged;
+      break;
+    }
+    ScopedTimer timer(time.line_search);
+    double alpha = 1.0, new_energy = energy;
+    if (!line_search(problem, x, energy, gradient_free_.dot(step_free_), settings, alpha,
+                     new_energy)) {
+      report.stop = NewtonStop::line_search_failed;
+      break;
+    }
+    if (alpha == 1.0 && failed_exact < 3) try_exact = true;
+    x = trial_;
+    energy = new_energy;
+  }
+  if (report.stop == NewtonStop::max_iterations) {  // report the state actually returned
+    ScopedTimer timer(time.assembly);
+    problem.gradient(x, gradient_);
+    problem.restrict_to_free(gradient_, gradient_free_);
+    report.gradient_norm = gradient_free_.norm();
+  }
+  report.energy = energy;
+  return report;
+}
+
+}  // namespace progsim
