@@ -1,0 +1,66 @@
+#pragma once
+/// @file A scene: bodies, materials, handles, effects and solver settings. Parsed from JSON
+/// (scene_json.hpp) or built in code; validated before anything is simulated.
+#include <string>
+#include <vector>
+
+#include "energy/shell_material.hpp"
+#include "mesh/triangle_mesh.hpp"
+#include "scene/effects.hpp"
+#include "solve/newton_solver.hpp"
+
+namespace progsim {
+
+/// How steps advance.
+enum class StepMode {
+  dynamic,      ///< implicit Euler: minimise the incremental potential with inertia
+  quasistatic,  ///< each step minimises the potential energy (no inertia) at that step's loads
+};
+
+/// A shell body: its mesh (already transformed to world space), material and pressure.
+struct Body {
+  std::string name;
+  TriangleMesh mesh;
+  ShellMaterial material;
+  double pressure = 0.0;       ///< Pa, applied if the pressure effect is enabled
+  double pressure_ramp = 0.0;  ///< s; pressure grows linearly from 0 over this time (0: at once)
+};
+
+/// Rigid motion of a handle: x(t) = c + R(ω t)(x₀ − c) + v t, with R a rotation about
+/// `axis` through centre c.
+struct HandleMotion {
+  Vec3 velocity = Vec3::Zero();   ///< m/s
+  Vec3 axis = Vec3::UnitZ();      ///< unit rotation axis
+  Vec3 center = Vec3::Zero();     ///< m
+  double angular_velocity = 0.0;  ///< rad/s
+};
+
+/// Vertices of one body held on a scripted trajectory (Dirichlet boundary condition).
+struct Handle {
+  int body = 0;               ///< index into Scene::bodies
+  std::vector<int> vertices;  ///< vertex indices within the body's mesh
+  HandleMotion motion;
+};
+
+/// Everything needed to run a simulation.
+struct Scene {
+  std::string name = "scene";
+  StepMode mode = StepMode::dynamic;
+  double time_step = 0.01;               ///< s
+  double duration = 1.0;                 ///< s
+  int output_every = 1;                  ///< steps between written meshes
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< m/s²
+  EffectSet effects;
+  std::vector<Body> bodies;
+  std::vector<Handle> handles;
+  NewtonSettings solver;
+
+  /// Number of steps: round(duration / time_step), at least 1.
+  int num_steps() const;
+};
+
+/// Checks a scene built in code (the JSON parser calls it too): ranges of every parameter,
+/// valid meshes, handle indices in range. Throws Error(invalid_scene / invalid_mesh).
+void validate_scene(const Scene& scene);
+
+}  // namespace progsim

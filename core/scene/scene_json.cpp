@@ -1,0 +1,310 @@
+#include "scene/scene_json.hpp"
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "mesh/mesh_generators.hpp"
+#include "mesh/mesh_io.hpp"
+#include "scene/parameter_table.hpp"
+
+namespace progsim {
+namespace {
+
+using Json = nlohmann::json;
+constexpr double kPi = 3.14159265358979323846;
+
+[[noreturn]] void scene_error(const std::string& where, const std::string& what) {
+  fail(Status::invalid_scene, where + ": " + what);
+}
+
+void expect_object(const Json& j, const std::string& where) {
+  if (!j.is_object())
+    scene_error(where, "must be a JSON object, got " + std::string(j.type_name()));
+}
+
+/// Rejects keys not in `allowed` (catches typos such as "thicknes").
+void expect_keys(const Json& j, const std::string& where,
+                 std::initializer_list<const char*> allowed) {
+  expect_object(j, where);
+  for (const auto& item : j.items()) {
+    bool known = false;
+    std::string list;
+    for (const char* key : allowed) {
+      known = known || item.key() == key;
+      list += std::string(list.empty() ? "" : ", ") + key;
+    }
+    if (!known) scene_error(where, "unknown key '" + item.key() + "' (allowed: " + list + ")");
+  }
+}
+
+const Json& require(const Json& j, const char* key, const std::string& where) {
+  if (!j.contains(key)) scene_error(where, std::string("missing required field '") + key + "'");
+  return j.at(key);
+}
+
+double number(const Json& j, const std::string& where) {
+  if (!j.is_number()) scene_error(where, "must be a number, got " + std::string(j.type_name()));
+  return j.get<double>();
+}
+
+double number_or(const Json& j, const char* key, double fallback, const std::string& where) {
+  return j.contains(key) ? number(j.at(key), where + "." + key) : fallback;
+}
+
+int integer(const Json& j, const std::string& where) {
+  if (!j.is_number_integer()) scene_error(where, "must be a whole number");
+  return j.get<int>();
+}
+
+Vec3 vec3(const Json& j, const std::string& where) {
+  if (!j.is_array() || j.size() != 3) scene_error(where, "must be an array of 3 numbers");
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) v[k] = number(j[k], where + "[" + std::to_string(k) + "]");
+  if (!v.allFinite()) scene_error(where, "must be finite");
+  return v;
+}
+
+Vec3 vec3_or(const Json& j, const char* key, const Vec3& fallback, const std::string& where) {
+  return j.contains(key) ? vec3(j.at(key), where + "." + key) : fallback;
+}
+
+/// Reads a table parameter j[name] (default from the table), checks its range.
+double parameter(const Json& j, const char* group, const char* name, const std::string& where) {
+  const ParameterSpec& spec = find_parameter(group, name);
+  const std::string label = where + "." + name;
+  const double value = j.contains(name) ? number(j.at(name), label) : spec.default_value;
+  check_parameter(spec, value, label);
+  return value;
+}
+
+TriangleMesh generated_mesh(const Json& j, const std::string& where) {
+  const std::string kind = j.at("generator").get<std::string>();
+  if (kind == "grid") {
+    expect_keys(j, where, {"generator", "width", "height", "nx", "ny"});
+    const int nx = integer(require(j, "nx", where), where + ".nx");
+    const int ny = integer(require(j, "ny", where), where + ".ny");
+    const double w = number(require(j, "width", where), where + ".width");
+    const double h = number(require(j, "height", where), where + ".height");
+    if (nx < 1 || ny < 1 || nx * static_cast<long>(ny) > 50'000'000)
+      scene_error(where, "nx and ny must be at least 1 and nx·ny at most 5e7");
+    if (!(w > 0.0) || !(h > 0.0)) scene_error(where, "width and height must be positive");
+    return make_grid(w, h, nx, ny);
+  }
+  if (kind == "sphere") {
+    expect_keys(j, where, {"generator", "radius", "subdivisions"});
+    const double r = number(require(j, "radius", where), where + ".radius");
+    const int s = integer(require(j, "subdivisions", where), where + ".subdivisions");
+    if (!(r > 0.0) || s < 0 || s > 9)
+      scene_error(where, "radius must be > 0, subdivisions in [0, 9]");
+    return make_sphere(r, s);
+  }
+  if (kind == "cylinder") {
+    expect_keys(j, where,
+                {"generator", "radius", "length", "angle_degrees", "n_around", "n_along"});
+    const double r = number(require(j, "radius", where), where + ".radius");
+    const double len = number(require(j, "length", where), where + ".length");
+    const double deg = number_or(j, "angle_degrees", 360.0, where);
+    const int na = integer(require(j, "n_around", where), where + ".n_around");
+    const int nl = integer(require(j, "n_along", where), where + ".n_along");
+    if (!(r > 0.0) || !(len > 0.0) || !(deg > 0.0 && deg <= 360.0) || na < 3 || nl < 1)
+      scene_error(
+          where,
+          "need radius > 0, length > 0, angle_degrees in (0, 360], n_around ≥ 3, n_along ≥ 1");
+    return make_cylinder(r, len, deg * kPi / 180.0, na, nl);
+  }
+  scene_error(where + ".generator",
+              "unknown generator '" + kind + "' (known: grid, sphere, cylinder)");
+}
+
+TriangleMesh body_mesh(const Json& j, const std::string& where, const std::string& base_dir) {
+  expect_object(j, where);
+  if (j.contains("file")) {
+    expect_keys(j, where, {"file"});
+    std::filesystem::path path = j.at("file").get<std::string>();
+    if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
+    return read_mesh(path.string());
+  }
+  if (j.contains("generator")) return generated_mesh(j, where);
+  scene_error(where, "needs either 'file' or 'generator'");
+}
+
+void apply_transform(const Json& j, const std::string& where, Positions& p) {
+  expect_keys(j, where, {"scale", "rotate", "translate"});
+  const double scale = number_or(j, "scale", 1.0, where);
+  if (!(scale > 0.0) || !std::isfinite(scale)) scene_error(where + ".scale", "must be positive");
+  Mat3 rotation = Mat3::Identity();
+  if (j.contains("rotate")) {
+    const Json& r = j.at("rotate");
+    expect_keys(r, where + ".rotate", {"axis", "degrees"});
+    const Vec3 axis = vec3(require(r, "axis", where + ".rotate"), where + ".rotate.axis");
+    if (!(axis.norm() > 0.0)) scene_error(where + ".rotate.axis", "must be non-zero");
+    const double deg = number(require(r, "degrees", where + ".rotate"), where + ".rotate.degrees");
+    rotation = Eigen::AngleAxisd(deg * kPi / 180.0, axis.normalized()).toRotationMatrix();
+  }
+  const Vec3 shift = vec3_or(j, "translate", Vec3::Zero(), where);
+  for (Eigen::Index i = 0; i < p.rows(); ++i)
+    p.row(i) = (rotation * (scale * p.row(i).transpose()) + shift).transpose();
+}
+
+ShellMaterial material(const Json& j, const std::string& where) {
+  expect_keys(j, where, {"youngs_modulus", "poisson_ratio", "thickness", "density"});
+  ShellMaterial m;
+  m.youngs_modulus = parameter(j, "material", "youngs_modulus", where);
+  m.poisson_ratio = parameter(j, "material", "poisson_ratio", where);
+  m.thickness = parameter(j, "material", "thickness", where);
+  m.density = parameter(j, "material", "density", where);
+  return m;
+}
+
+Body body(const Json& j, const std::string& where, const std::string& base_dir) {
+  expect_keys(j, where, {"name", "mesh", "transform", "material", "pressure", "pressure_ramp"});
+  Body b;
+  b.name = j.value("name", where);
+  b.mesh = body_mesh(require(j, "mesh", where), where + ".mesh", base_dir);
+  if (j.contains("transform"))
+    apply_transform(j.at("transform"), where + ".transform", b.mesh.vertices);
+  b.material =
+      material(j.contains("material") ? j.at("material") : Json::object(), where + ".material");
+  b.pressure = number_or(j, "pressure", 0.0, where);
+  b.pressure_ramp = number_or(j, "pressure_ramp", 0.0, where);
+  return b;
+}
+
+int body_index(const Json& j, const std::vector<Body>& bodies, const std::string& where) {
+  if (j.is_number_integer()) return j.get<int>();
+  if (j.is_string())
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+      if (bodies[b].name == j.get<std::string>()) return static_cast<int>(b);
+  scene_error(where, "names no body (use a body's name or index)");
+}
+
+std::vector<int> box_selection(const Json& j, const Positions& p, const std::string& where) {
+  expect_keys(j, where, {"min", "max"});
+  const Vec3 lo = vec3(require(j, "min", where), where + ".min");
+  const Vec3 hi = vec3(require(j, "max", where), where + ".max");
+  std::vector<int> selected;
+  for (Eigen::Index i = 0; i < p.rows(); ++i) {
+    const Vec3 x = p.row(i).transpose();
+    if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all())
+      selected.push_back(static_cast<int>(i));
+  }
+  return selected;
+}
+
+HandleMotion motion(const Json& j, const std::string& where) {
+  expect_keys(j, where, {"velocity", "axis", "center", "angular_velocity"});
+  HandleMotion m;
+  m.velocity = vec3_or(j, "velocity", Vec3::Zero(), where);
+  m.axis = vec3_or(j, "axis", Vec3::UnitZ(), where);
+  m.center = vec3_or(j, "center", Vec3::Zero(), where);
+  m.angular_velocity = number_or(j, "angular_velocity", 0.0, where);
+  if (!(m.axis.norm() > 0.0)) scene_error(where + ".axis", "must be non-zero");
+  m.axis.normalize();
+  return m;
+}
+
+Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string& where) {
+  expect_keys(j, where, {"body", "vertices", "box", "motion"});
+  Handle h;
+  h.body = body_index(require(j, "body", where), bodies, where + ".body");
+  if (h.body < 0 || h.body >= static_cast<int>(bodies.size()))
+    scene_error(where + ".body", "index " + std::to_string(h.body) + " does not exist");
+  if (j.contains("vertices")) {
+    const Json& v = j.at("vertices");
+    if (!v.is_array()) scene_error(where + ".vertices", "must be an array of vertex indices");
+    for (std::size_t k = 0; k < v.size(); ++k)
+      h.vertices.push_back(integer(v[k], where + ".vertices[" + std::to_string(k) + "]"));
+  }
+  if (j.contains("box")) {
+    const std::vector<int> boxed =
+        box_selection(j.at("box"), bodies[h.body].mesh.vertices, where + ".box");
+    h.vertices.insert(h.vertices.end(), boxed.begin(), boxed.end());
+  }
+  if (h.vertices.empty())
+    scene_error(where, "selects no vertices (give 'vertices' or a 'box' that contains some)");
+  if (j.contains("motion")) h.motion = motion(j.at("motion"), where + ".motion");
+  return h;
+}
+
+void simulation(const Json& j, Scene& scene) {
+  const std::string where = "simulation";
+  expect_keys(j, where, {"mode", "time_step", "duration", "output_every"});
+  const std::string mode = j.value("mode", std::string("dynamic"));
+  if (mode == "dynamic")
+    scene.mode = StepMode::dynamic;
+  else if (mode == "quasistatic")
+    scene.mode = StepMode::quasistatic;
+  else
+    scene_error(where + ".mode", "unknown mode '" + mode + "' (known: dynamic, quasistatic)");
+  scene.time_step = parameter(j, "simulation", "time_step", where);
+  scene.duration = parameter(j, "simulation", "duration", where);
+  scene.output_every = static_cast<int>(parameter(j, "simulation", "output_every", where));
+}
+
+void solver(const Json& j, Scene& scene) {
+  expect_keys(j, "solver", {"newton_tolerance", "max_newton_iterations"});
+  scene.solver.tolerance = parameter(j, "solver", "newton_tolerance", "solver");
+  scene.solver.max_iterations =
+      static_cast<int>(parameter(j, "solver", "max_newton_iterations", "solver"));
+}
+
+Scene scene_from_json(const Json& root, const std::string& base_dir) {
+  expect_keys(root, "scene",
+              {"name", "simulation", "gravity", "effects", "solver", "bodies", "handles"});
+  Scene scene;
+  scene.name = root.value("name", std::string("scene"));
+  simulation(root.contains("simulation") ? root.at("simulation") : Json::object(), scene);
+  solver(root.contains("solver") ? root.at("solver") : Json::object(), scene);
+  scene.gravity = vec3_or(root, "gravity", scene.gravity, "scene");
+  const Json& effects = require(root, "effects", "scene");
+  if (!effects.is_array()) scene_error("effects", "must be an array of effect names");
+  for (const Json& e : effects) {
+    if (!e.is_string()) scene_error("effects", "must hold effect names (strings)");
+    scene.effects.enable(parse_effect(e.get<std::string>()));
+  }
+  const Json& bodies = require(root, "bodies", "scene");
+  if (!bodies.is_array() || bodies.empty()) scene_error("bodies", "must be a non-empty array");
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    scene.bodies.push_back(body(bodies[b], "bodies[" + std::to_string(b) + "]", base_dir));
+  if (root.contains("handles")) {
+    const Json& handles = root.at("handles");
+    if (!handles.is_array()) scene_error("handles", "must be an array");
+    for (std::size_t h = 0; h < handles.size(); ++h)
+      scene.handles.push_back(
+          handle(handles[h], scene.bodies, "handles[" + std::to_string(h) + "]"));
+  }
+  validate_scene(scene);
+  return scene;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& json_text, const std::string& base_dir) {
+  Json root;
+  try {
+    root = Json::parse(json_text, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const Json::exception& e) {
+    fail(Status::invalid_scene, std::string("scene is not valid JSON: ") + e.what());
+  }
+  try {
+    return scene_from_json(root, base_dir);
+  } catch (const Json::exception& e) {  // type errors inside value()/get<>()
+    fail(Status::invalid_scene, std::string("scene has a field of the wrong type: ") + e.what());
+  }
+}
+
+Scene load_scene_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail(Status::io_error, "cannot read scene file '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string dir = std::filesystem::absolute(path).parent_path().string();
+  return parse_scene(text.str(), dir);
+}
+
+}  // namespace progsim

@@ -1,0 +1,35 @@
+#include "sim/step_record.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace progsim {
+
+std::string to_json_line(const StepRecord& r) {
+  nlohmann::json terms = nlohmann::json::array();
+  for (const TermStats& t : r.terms)
+    terms.push_back({{"name", t.name},
+                     {"value_evaluations", t.value_evaluations},
+                     {"gradient_evaluations", t.gradient_evaluations},
+                     {"hessian_evaluations", t.hessian_evaluations},
+                     {"seconds", t.seconds}});
+  const NewtonReport& n = r.newton;
+  nlohmann::json line = {{"step", r.step},
+                         {"time", r.time},
+                         {"seconds", r.seconds},
+                         {"newton_iterations", n.iterations},
+                         {"stop", stop_name(n.stop)},
+                         {"energy", n.energy},
+                         {"gradient_norm", n.gradient_norm},
+                         {"step_norm", n.step_norm},
+                         {"max_diagonal_shift", n.max_shift},
+                         {"exact_hessian_iterations", n.exact_steps},
+                         {"phase_seconds",
+                          {{"assembly", n.timings.assembly},
+                           {"factorization", n.timings.factorization},
+                           {"solve", n.timings.solve},
+                           {"line_search", n.timings.line_search}}},
+                         {"terms", terms}};
+  return line.dump();
+}
+
+}  // namespace progsim

@@ -1,0 +1,133 @@
+// The progsim CLI end to end: good runs write frames, logs and a summary; bad input exits
+// non-zero with a message naming the problem and writes nothing.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CommandResult {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+CommandResult run_cli(const std::string& args) {
+  const std::string command = std::string(PROGSIM_CLI_PATH) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  std::string output;
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("progsim_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+
+  /// A scene around a mesh file or generator, with the given material and effects.
+  fs::path scene(const std::string& mesh, const std::string& material = "{}",
+                 const std::string& effects = R"(["membrane", "gravity"])") {
+    return write("scene.json", R"({ "name": "cli", "effects": )" + effects + R"(,
+      "simulation": {"time_step": 0.01, "duration": 0.03},
+      "bodies": [{ "name": "sheet", "mesh": )" +
+                                   mesh + R"(, "material": )" + material + R"( }],
+      "handles": [{ "body": 0, "vertices": [0] }] })");
+  }
+
+  /// Runs the scene and expects failure naming `needle`, with no output folder created.
+  void expect_rejected(const fs::path& scene_file, const std::string& needle) {
+    const fs::path out = dir_ / "out";
+    const CommandResult r = run_cli("run " + scene_file.string() + " --out " + out.string());
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(needle), std::string::npos) << "output lacks '" << needle << "':\n"
+                                                        << r.output;
+    EXPECT_FALSE(fs::exists(out)) << "output folder written for bad input";
+  }
+
+  fs::path dir_;
+};
+
+const char* const kGrid = R"({"generator": "grid", "width": 1, "height": 1, "nx": 4, "ny": 4})";
+
+}  // namespace
+
+TEST_F(Cli, RunWritesFramesStepLogAndSummary) {
+  const fs::path out = dir_ / "out";
+  const CommandResult r =
+      run_cli("run " + scene(kGrid).string() + " --out " + out.string() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "frame_00000.obj"));
+  EXPECT_TRUE(fs::exists(out / "frame_00003.obj"));
+  std::ifstream log(out / "steps.jsonl");
+  int lines = 0;
+  for (std::string line; std::getline(log, line); ++lines) {
+    const auto j = nlohmann::json::parse(line);
+    EXPECT_EQ(j.at("step").get<int>(), lines + 1);
+    EXPECT_TRUE(j.contains("newton_iterations") && j.contains("energy") &&
+                j.contains("gradient_norm"));
+  }
+  EXPECT_EQ(lines, 3);
+  const auto summary = nlohmann::json::parse(std::ifstream(out / "summary.json"));
+  EXPECT_EQ(summary.at("steps").get<int>(), 3);
+  std::vector<std::string> terms;
+  for (const auto& t : summary.at("terms")) terms.push_back(t.at("name"));
+  // Only the enabled effects (plus inertia, since the scene is dynamic) have terms at all.
+  EXPECT_EQ(terms, (std::vector<std::string>{"inertia", "membrane", "gravity"}));
+}
+
+TEST_F(Cli, InfoAndParamsPrint) {
+  const CommandResult info = run_cli("info");
+  EXPECT_EQ(info.exit_code, 0);
+  EXPECT_NE(info.output.find("cholmod"), std::string::npos) << info.output;
+  const CommandResult params = run_cli("params");
+  EXPECT_EQ(params.exit_code, 0);
+  EXPECT_NE(params.output.find("material.poisson_ratio"), std::string::npos);
+}
+
+TEST_F(Cli, RejectsMalformedScenes) {
+  expect_rejected(write("missing.json", R"({"effects": ["membrane"]})"),
+                  "missing required field 'bodies'");
+  expect_rejected(scene(kGrid, R"({"thickness": -1e-3})"), "thickness = -0.001 is invalid");
+  expect_rejected(scene(kGrid, R"({"poisson_ratio": 0.5})"), "poisson_ratio = 0.5 is invalid");
+  expect_rejected(scene(kGrid, "{}", R"(["membrane", "antigravity"])"),
+                  "unknown effect 'antigravity'");
+  expect_rejected(write("broken.json", "{ \"effects\": "), "not valid JSON");
+  expect_rejected(dir_ / "no_such_scene.json", "cannot read scene file");
+}
+
+TEST_F(Cli, RejectsMalformedMeshes) {
+  const auto mesh_scene = [&](const std::string& file, const std::string& text) {
+    write(file, text);
+    return scene(R"({"file": ")" + file + R"("})");
+  };
+  const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  expect_rejected(mesh_scene("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"), "vertex 1");
+  expect_rejected(mesh_scene("range.obj", quad + "f 1 2 3\nf 1 3 9\n"), "face 1");
+  expect_rejected(mesh_scene("degenerate.obj", quad + "v 2 0 0\nf 1 2 3\nf 1 3 4\nf 1 2 5\n"),
+                  "face 2");
+  expect_rejected(mesh_scene("unreferenced.obj", quad + "v 5 5 5\nf 1 2 3\nf 1 3 4\n"), "vertex 4");
+  expect_rejected(mesh_scene("nonmanifold.obj",
+                             quad + "v 0 0 1\nv 0 0 -1\nf 1 2 3\nf 1 3 4\nf 1 3 5\nf 3 1 6\n"),
+                  "non-manifold");
+}

@@ -1,0 +1,133 @@
+// The JSON scene format: bundled scenes parse; every malformed scene names its problem.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common/error.hpp"
+#include "energy/shell_material.hpp"
+#include "scene/parameter_table.hpp"
+#include "scene/scene_json.hpp"
+
+using namespace progsim;
+
+namespace {
+
+/// A small valid scene; `body_extra` is spliced into the body object, `top_extra` into the root.
+const char* const kGrid = R"({ "generator": "grid", "width": 1, "height": 1, "nx": 3, "ny": 3 })";
+
+std::string scene_text(const std::string& body_extra = "", const std::string& top_extra = "",
+                       const std::string& effects = R"(["membrane", "gravity"])",
+                       const std::string& mesh = kGrid) {
+  return R"({ "name": "t", "effects": )" + effects + top_extra + R"(,
+    "bodies": [ { "name": "sheet", "mesh": )" +
+         mesh + body_extra + R"( } ] })";
+}
+
+/// Parses and returns the error (status and message) it must raise.
+Error parse_error(const std::string& text) {
+  try {
+    parse_scene(text, ".");
+  } catch (const Error& e) {
+    return e;
+  }
+  ADD_FAILURE() << "scene parsed but should have failed:\n" << text;
+  return Error(Status::ok, "");
+}
+
+void expect_scene_error(const std::string& text, const std::string& needle) {
+  const Error e = parse_error(text);
+  EXPECT_EQ(e.status(), Status::invalid_scene) << e.what();
+  EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
+      << "message '" << e.what() << "' lacks '" << needle << "'";
+}
+
+}  // namespace
+
+TEST(SceneJson, BundledScenesParse) {
+  for (const char* name : {"hanging_cloth", "curved_shell", "balloon"}) {
+    const Scene scene =
+        load_scene_file(std::string(PROGSIM_SOURCE_DIR) + "/scenes/" + name + ".json");
+    EXPECT_EQ(scene.name, name);
+    EXPECT_FALSE(scene.bodies.empty());
+  }
+}
+
+TEST(SceneJson, ReadsMaterialsHandlesAndDefaults) {
+  const Scene s =
+      parse_scene(scene_text(R"(, "material": {"thickness": 0.002, "youngs_modulus": 3e6})",
+                             R"(, "handles": [{"body": "sheet", "vertices": [0, 3],
+                                              "motion": {"velocity": [0, 1, 0]}}])"),
+                  ".");
+  EXPECT_EQ(s.bodies[0].material.thickness, 0.002);
+  EXPECT_EQ(s.bodies[0].material.youngs_modulus, 3e6);
+  EXPECT_EQ(s.bodies[0].material.poisson_ratio,
+            find_parameter("material", "poisson_ratio").default_value);
+  ASSERT_EQ(s.handles.size(), 1u);
+  EXPECT_EQ(s.handles[0].vertices, (std::vector<int>{0, 3}));
+  EXPECT_EQ(s.handles[0].motion.velocity, Vec3(0, 1, 0));
+  EXPECT_TRUE(s.effects.has(Effect::membrane));
+  EXPECT_FALSE(s.effects.has(Effect::bending));
+  EXPECT_EQ(s.time_step, find_parameter("simulation", "time_step").default_value);
+}
+
+TEST(SceneJson, ShellMaterialDefaultsAgreeWithTheParameterTable) {
+  const ShellMaterial m;
+  EXPECT_EQ(m.youngs_modulus, find_parameter("material", "youngs_modulus").default_value);
+  EXPECT_EQ(m.poisson_ratio, find_parameter("material", "poisson_ratio").default_value);
+  EXPECT_EQ(m.thickness, find_parameter("material", "thickness").default_value);
+  EXPECT_EQ(m.density, find_parameter("material", "density").default_value);
+}
+
+TEST(SceneJson, RejectsMissingFields) {
+  expect_scene_error(R"({ "effects": ["membrane"] })", "missing required field 'bodies'");
+  expect_scene_error(R"({ "bodies": [] })", "missing required field 'effects'");
+  expect_scene_error(R"({ "effects": [], "bodies": [ {"name": "a"} ] })",
+                     "missing required field 'mesh'");
+  expect_scene_error(scene_text("", "", R"(["membrane"])",
+                                R"({"generator": "grid", "width": 1, "height": 1, "ny": 3})"),
+                     "missing required field 'nx'");
+}
+
+TEST(SceneJson, RejectsOutOfRangeMaterials) {
+  expect_scene_error(scene_text(R"(, "material": {"thickness": -0.001})"),
+                     "bodies[0].material.thickness");
+  expect_scene_error(scene_text(R"(, "material": {"poisson_ratio": 0.5})"),
+                     "poisson_ratio = 0.5 is invalid");
+  expect_scene_error(scene_text(R"(, "material": {"poisson_ratio": 0.7})"), "(-1, 0.5)");
+  expect_scene_error(scene_text(R"(, "material": {"youngs_modulus": 0})"), "youngs_modulus");
+  expect_scene_error(scene_text(R"(, "material": {"density": "heavy"})"), "must be a number");
+}
+
+TEST(SceneJson, RejectsUnknownEffectsKeysAndModes) {
+  expect_scene_error(scene_text("", "", R"(["membrane", "magnetism"])"),
+                     "unknown effect 'magnetism'");
+  expect_scene_error(scene_text(R"(, "material": {"thicknes": 0.001})"), "unknown key 'thicknes'");
+  expect_scene_error(scene_text("", R"(, "simulation": {"mode": "fast"})"), "unknown mode 'fast'");
+  expect_scene_error(scene_text("", R"(, "simulation": {"time_step": 0})"), "simulation.time_step");
+  expect_scene_error(scene_text("", R"(, "solver": {"max_newton_iterations": 2.5})"),
+                     "whole number");
+}
+
+TEST(SceneJson, RejectsBadHandles) {
+  expect_scene_error(scene_text("", R"(, "handles": [{"body": "nobody", "vertices": [0]}])"),
+                     "names no body");
+  expect_scene_error(scene_text("", R"(, "handles": [{"body": 0, "vertices": [99]}])"),
+                     "vertex 99 is out of range");
+  expect_scene_error(
+      scene_text("", R"(, "handles": [{"body": 0, "box": {"min": [5,5,5], "max": [6,6,6]}}])"),
+      "selects no vertices");
+}
+
+TEST(SceneJson, RejectsInvalidJsonAndMissingFiles) {
+  expect_scene_error("{ \"effects\": [", "not valid JSON");
+  const Error missing =
+      parse_error(scene_text("", "", R"(["membrane"])", R"({ "file": "does/not/exist.obj" })"));
+  EXPECT_EQ(missing.status(), Status::io_error) << missing.what();
+  EXPECT_NE(std::string(missing.what()).find("does/not/exist.obj"), std::string::npos);
+  try {
+    load_scene_file("/nonexistent/scene.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::io_error);
+  }
+}
