@@ -38,7 +38,8 @@ void validate_handle(const Scene& scene, std::size_t h) {
       fail(Status::invalid_scene, where + ": vertex " + std::to_string(v) +
                                       " is out of range [0, " + std::to_string(n) + ")");
   const HandleMotion& m = handle.motion;
-  if (!m.velocity.allFinite() || !m.center.allFinite() || !std::isfinite(m.angular_velocity))
+  if (!m.velocity.allFinite() || !m.center.allFinite() || !m.offset.allFinite() ||
+      !m.axis.allFinite() || !std::isfinite(m.angular_velocity))
     fail(Status::invalid_scene, where + ": motion has a non-finite value");
   if (m.angular_velocity != 0.0 && !(m.axis.norm() > 0.0))
     fail(Status::invalid_scene, where + ": rotation axis must be non-zero");

@@ -26,13 +26,14 @@ struct Body {
   double pressure_ramp = 0.0;  ///< s; pressure grows linearly from 0 over this time (0: at once)
 };
 
-/// Rigid motion of a handle: x(t) = c + R(ω t)(x₀ − c) + v t, with R a rotation about
-/// `axis` through centre c.
+/// Rigid motion of a handle: x(t) = c + R(ω t)(x₀ − c) + v t + offset, with R a rotation
+/// about `axis` through centre c.
 struct HandleMotion {
   Vec3 velocity = Vec3::Zero();   ///< m/s
   Vec3 axis = Vec3::UnitZ();      ///< unit rotation axis
   Vec3 center = Vec3::Zero();     ///< m
   double angular_velocity = 0.0;  ///< rad/s
+  Vec3 offset = Vec3::Zero();     ///< m, a translation a designer drags between steps
 };
 
 /// Vertices of one body held on a scripted trajectory (Dirichlet boundary condition).

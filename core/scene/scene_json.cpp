@@ -197,12 +197,13 @@ std::vector<int> box_selection(const Json& j, const Positions& p, const std::str
 }
 
 HandleMotion motion(const Json& j, const std::string& where) {
-  expect_keys(j, where, {"velocity", "axis", "center", "angular_velocity"});
+  expect_keys(j, where, {"velocity", "axis", "center", "angular_velocity", "offset"});
   HandleMotion m;
   m.velocity = vec3_or(j, "velocity", Vec3::Zero(), where);
   m.axis = vec3_or(j, "axis", Vec3::UnitZ(), where);
   m.center = vec3_or(j, "center", Vec3::Zero(), where);
   m.angular_velocity = number_or(j, "angular_velocity", 0.0, where);
+  m.offset = vec3_or(j, "offset", Vec3::Zero(), where);
   if (!(m.axis.norm() > 0.0)) scene_error(where + ".axis", "must be non-zero");
   m.axis.normalize();
   return m;

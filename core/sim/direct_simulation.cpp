@@ -1,5 +1,8 @@
 #include "sim/direct_simulation.hpp"
 
+#include <algorithm>
+
+#include "common/error.hpp"
 #include "common/timer.hpp"
 #include "energy/gravity.hpp"
 #include "energy/hinge_bending.hpp"
@@ -70,6 +73,26 @@ void DirectSimulation::apply_loads(double t) {
     term->set_pressure(ramp * body.pressure);
   }
   handles_.apply(t, x_);
+}
+
+void DirectSimulation::update_scene(Scene scene) {
+  validate_scene(scene);
+  const bool same_size = scene.bodies.size() == scene_.bodies.size() &&
+                         std::equal(scene.bodies.begin(), scene.bodies.end(),
+                                    scene_.bodies.begin(), [](const Body& a, const Body& b) {
+                                      return a.mesh.num_vertices() == b.mesh.num_vertices() &&
+                                             a.mesh.num_faces() == b.mesh.num_faces();
+                                    });
+  if (!same_size)
+    fail(Status::invalid_argument, "update_scene: the bodies' meshes must keep their sizes");
+  scene_ = std::move(scene);
+  model_ = build_shell_model(scene_);
+  handles_ = HandleTargets(scene_, model_);
+  inertia_ = nullptr;
+  pressures_.clear();
+  build_problem();
+  solver_.reset();
+  if (scene_.mode == StepMode::quasistatic) v_.setZero();
 }
 
 StepRecord DirectSimulation::step() {

@@ -30,6 +30,11 @@ class DirectSimulation {
   /// the line search accepted).
   StepRecord step();
 
+  /// Replaces the scene between steps (materials, loads, handles, effects, time step,
+  /// solver settings) and rebuilds the problem, keeping positions, velocities and time.
+  /// The bodies' meshes must keep their sizes. Validates first: on Error nothing changed.
+  void update_scene(Scene scene);
+
   int steps_taken() const { return steps_taken_; }
   double time() const { return steps_taken_ * scene_.time_step; }
   /// Current positions (|V| × 3), metres.

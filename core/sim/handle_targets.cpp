@@ -28,7 +28,8 @@ void HandleTargets::apply(double t, Vector& x) const {
   for (std::size_t i = 0; i < vertices_.size(); ++i) {
     const HandleMotion& m = motions_[handle_of_[i]];
     const Eigen::AngleAxisd rotation(m.angular_velocity * t, m.axis);
-    x.segment<3>(3 * vertices_[i]) = m.center + rotation * (rest_[i] - m.center) + m.velocity * t;
+    x.segment<3>(3 * vertices_[i]) =
+        m.center + rotation * (rest_[i] - m.center) + m.velocity * t + m.offset;
   }
 }
 

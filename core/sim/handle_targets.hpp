@@ -18,7 +18,7 @@ class HandleTargets {
   std::vector<bool> fixed_dofs(int num_vertices) const;
 
   /// Writes each handle vertex's target at time t (s) into x (3|V|):
-  /// x_i(t) = c + R(ω t)(x̄_i − c) + v t.
+  /// x_i(t) = c + R(ω t)(x̄_i − c) + v t + offset.
   void apply(double t, Vector& x) const;
 
   bool empty() const { return vertices_.empty(); }

@@ -73,6 +73,10 @@ class NewtonSolver {
   NewtonReport minimize(Problem& problem, Vector& x, const NewtonSettings& settings,
                         double decrement_scale, double length);
 
+  /// Forgets the symbolic analysis: call when the Problem was rebuilt (a new Problem may
+  /// reuse the old one's address with a different sparsity pattern).
+  void reset() { analyzed_for_ = nullptr; }
+
  private:
   bool line_search(Problem& problem, const Vector& x, double energy, double slope,
                    const NewtonSettings& settings, double& alpha, double& new_energy);
