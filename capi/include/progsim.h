@@ -1,0 +1,345 @@
+/*
+ * progsim — progressive (level-of-detail) simulation of cloth, thin shells and solids.
+ *
+ * The C ABI: opaque handles, status codes, caller-provided buffers. C99, no inline code.
+ *
+ * Conventions (every call follows them):
+ * - Units are SI: metres, seconds, kilograms, pascals, radians.
+ * - Positions are row-major (n × 3) doubles (x0 y0 z0 x1 y1 z1 ...); faces are row-major
+ *   (m × 3) int32_t vertex indices, counter-clockwise seen from the front.
+ * - Every fallible call returns a ps_status. PS_OK is 0. On failure, nothing the caller
+ *   owns was modified (output buffers and out-pointers keep their previous contents), and a
+ *   message naming the problem is available from ps_sim_last_error() or
+ *   ps_hierarchy_last_error() for calls on a handle, and from ps_last_error() for calls that
+ *   had no usable handle (failed creates, NULL handles). No call aborts, exits, prints, or
+ *   lets a C++ exception escape.
+ * - Arrays out: call with out == NULL (capacity ignored) to learn the size, then again with a
+ *   buffer of at least that many elements. A too-small buffer gives
+ *   PS_ERROR_BUFFER_TOO_SMALL and the required size.
+ * - Ownership: "caller owns" means the caller must destroy it with the named function;
+ *   "borrowed" pointers stay valid until the event named and must not be freed.
+ *
+ * Thread contract: one handle is used by one thread at a time (calls on the same handle
+ * must not overlap). Distinct handles may be used from distinct threads concurrently; a
+ * handle may move between threads. A simulation reads its hierarchy, so a hierarchy shared
+ * by simulations on several threads must not be destroyed while any of them runs.
+ * Callbacks run on the calling thread and must not call back into progsim.
+ */
+#ifndef PROGSIM_H
+#define PROGSIM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32)
+#if defined(PROGSIM_BUILDING)
+#define PS_API __declspec(dllexport)
+#else
+#define PS_API __declspec(dllimport)
+#endif
+#else
+#define PS_API __attribute__((visibility("default")))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------- version -------------- */
+
+#define PS_VERSION_MAJOR 0
+#define PS_VERSION_MINOR 1
+#define PS_VERSION_PATCH 0
+/** The header's version packed as major·10000 + minor·100 + patch. */
+#define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
+
+/** The library's version, packed like PS_VERSION_HEADER. Thread-safe. */
+PS_API int32_t ps_version(void);
+
+/** The library's version as text, e.g. "0.1.0". Borrowed, static. Thread-safe. */
+PS_API const char* ps_version_string(void);
+
+/**
+ * Checks that the library loaded at run time can serve a caller compiled against header
+ * version `header_version` (pass PS_VERSION_HEADER). Same major version and a library minor
+ * version at least the header's → PS_OK; otherwise PS_ERROR_VERSION_MISMATCH with both
+ * versions in ps_last_error(). Bindings call it once when they load. Thread-safe.
+ */
+PS_API int32_t ps_check_version(int32_t header_version);
+
+/* ---------------------------------------------------------------- status --------------- */
+
+/** Result of every fallible call. Values are stable across versions. */
+typedef enum ps_status {
+  PS_OK = 0,
+  PS_ERROR_INVALID_ARGUMENT = 1,   /**< a parameter is NaN, out of range or nonsense */
+  PS_ERROR_INVALID_MESH = 2,       /**< a mesh fails validation; names the first bad element */
+  PS_ERROR_INVALID_SCENE = 3,      /**< a scene description is malformed (typo, missing field) */
+  PS_ERROR_IO = 4,                 /**< a file cannot be read or written */
+  PS_ERROR_NUMERICAL = 5,          /**< the solver failed (non-finite values, factorization) */
+  PS_ERROR_WRONG_CALL_ORDER = 6,   /**< the call needs another call first */
+  PS_ERROR_OUT_OF_RANGE = 7,       /**< a level, handle or index does not exist */
+  PS_ERROR_CANCELLED = 8,          /**< the progress callback asked to stop */
+  PS_ERROR_INTERSECTING = 9,       /**< a configuration intersects itself or another body */
+  PS_ERROR_INTERNAL = 10,          /**< a bug in progsim; please report the message */
+  PS_ERROR_NULL_ARGUMENT = 11,     /**< a required pointer or handle is NULL */
+  PS_ERROR_BUFFER_TOO_SMALL = 12,  /**< an output buffer's capacity is below the size needed */
+  PS_ERROR_UNINITIALIZED_DEF = 13, /**< a def-struct was not filled by its *_def_init() */
+  PS_ERROR_VERSION_MISMATCH = 14,  /**< header and library versions are incompatible */
+  PS_ERROR_OUT_OF_MEMORY = 15,     /**< an allocation failed */
+  PS_ERROR_UNSUPPORTED = 16,       /**< valid request that this version cannot do yet */
+  PS_STATUS_FORCE32 = 0x7fffffff
+} ps_status;
+
+/** Stable short name of a status ("PS_ERROR_INVALID_MESH", ...). Borrowed, static. */
+PS_API const char* ps_status_name(int32_t status);
+
+/**
+ * Message of the last failure on the calling thread of a call that had no usable handle
+ * (a create, or a call given a NULL handle), or of ps_check_version(). "" if none. Borrowed
+ * until the next progsim call on this thread.
+ */
+PS_API const char* ps_last_error(void);
+
+/* ---------------------------------------------------------------- hierarchy ------------ */
+
+/** A mesh hierarchy: level 0 is the coarsest, level num_levels − 1 the user's mesh. */
+typedef struct ps_hierarchy ps_hierarchy;
+
+/** How to build a hierarchy. Fill with ps_hierarchy_def_init(), then change fields. */
+typedef struct ps_hierarchy_def {
+  /** Target vertex count of each level below the finest, increasing (coarsest first).
+   *  Nullable: NULL with num_coarse_levels = 0 (the default) gives one level, the input
+   *  mesh itself. Borrowed during the create call only. */
+  const int32_t* coarse_vertex_counts;
+  /** Number of entries in coarse_vertex_counts. Default 0. */
+  int32_t num_coarse_levels;
+  int32_t internal_cookie; /**< set by ps_hierarchy_def_init(); do not touch */
+} ps_hierarchy_def;
+
+/** Fills def with defaults (single level). def must not be NULL. */
+PS_API void ps_hierarchy_def_init(ps_hierarchy_def* def);
+
+/**
+ * Builds a hierarchy from a triangle mesh. The mesh is validated first (NaN/Inf
+ * coordinates, out-of-range indices, degenerate faces, non-manifold edges, unreferenced
+ * vertices → PS_ERROR_INVALID_MESH naming the first offender).
+ * @param def          Nullable (defaults). Borrowed during the call.
+ * @param vertices     (num_vertices × 3) positions, m. Copied.
+ * @param faces        (num_faces × 3) vertex indices. Copied.
+ * @param out          receives the new hierarchy; caller owns, destroy with
+ *                     ps_hierarchy_destroy(). Unchanged on failure.
+ * Multi-level hierarchies (num_coarse_levels > 0) return PS_ERROR_UNSUPPORTED in this
+ * version; the call and its meaning stay when they arrive.
+ */
+PS_API int32_t ps_hierarchy_create(const ps_hierarchy_def* def, const double* vertices,
+                                   size_t num_vertices, const int32_t* faces, size_t num_faces,
+                                   ps_hierarchy** out);
+
+/** As ps_hierarchy_create(), reading the mesh from an OBJ, OFF or PLY file at `path`. */
+PS_API int32_t ps_hierarchy_create_from_file(const ps_hierarchy_def* def, const char* path,
+                                             ps_hierarchy** out);
+
+/** Destroys a hierarchy. Nullable (no-op). Simulations created on it must be destroyed
+ *  first. */
+PS_API void ps_hierarchy_destroy(ps_hierarchy* hierarchy);
+
+/** Message of the last failed call on this hierarchy ("" if none). Borrowed until the next
+ *  call on it. A NULL hierarchy gives ps_last_error(). */
+PS_API const char* ps_hierarchy_last_error(const ps_hierarchy* hierarchy);
+
+/** Number of levels (≥ 1) into *out. */
+PS_API int32_t ps_hierarchy_num_levels(const ps_hierarchy* hierarchy, int32_t* out);
+
+/** Vertex and face counts of a level. Either out-pointer is nullable. */
+PS_API int32_t ps_hierarchy_level_size(const ps_hierarchy* hierarchy, int32_t level,
+                                       size_t* num_vertices, size_t* num_faces);
+
+/** Rest positions of a level: (n × 3) doubles into out[capacity]; *count = 3n. out is
+ *  nullable (size query). */
+PS_API int32_t ps_hierarchy_get_rest_positions(const ps_hierarchy* hierarchy, int32_t level,
+                                               double* out, size_t capacity, size_t* count);
+
+/** Faces of a level: (m × 3) indices into out[capacity]; *count = 3m. out is nullable. */
+PS_API int32_t ps_hierarchy_get_faces(const ps_hierarchy* hierarchy, int32_t level, int32_t* out,
+                                      size_t capacity, size_t* count);
+
+/* ---------------------------------------------------------------- simulation ----------- */
+
+/** A simulation of one hierarchy: preview steps at the current level, then refinement. */
+typedef struct ps_sim ps_sim;
+
+/** How steps advance. */
+typedef enum ps_mode {
+  PS_MODE_DYNAMIC = 0,     /**< implicit Euler with inertia */
+  PS_MODE_QUASISTATIC = 1, /**< each step minimises the potential energy at its loads */
+  PS_MODE_FORCE32 = 0x7fffffff
+} ps_mode;
+
+/** Physical effects; only enabled effects cost anything. Combine with |. */
+typedef enum ps_effect {
+  PS_EFFECT_MEMBRANE = 1 << 0, /**< Neo-Hookean membrane stretching */
+  PS_EFFECT_BENDING = 1 << 1,  /**< discrete hinge bending */
+  PS_EFFECT_GRAVITY = 1 << 2,  /**< uniform gravity */
+  PS_EFFECT_PRESSURE = 1 << 3, /**< uniform inner pressure of closed meshes */
+  PS_EFFECT_FORCE32 = 0x7fffffff
+} ps_effect;
+
+/**
+ * A simulation described in code. Fill with ps_sim_def_init(); the numeric fields follow
+ * the parameter table (`progsim params` prints names, defaults, units and ranges):
+ * field group_name is parameter group.name.
+ */
+typedef struct ps_sim_def {
+  double simulation_time_step;          /**< s, (0, 100]; default 0.01 */
+  double simulation_duration;           /**< s, (0, 1e7]; default 1 (CLI runs only) */
+  int32_t simulation_output_every;      /**< steps, ≥ 1; default 1 (CLI runs only) */
+  double material_youngs_modulus;       /**< Pa, (0, 1e13]; default 1e6 */
+  double material_poisson_ratio;        /**< 1, (−1, 0.5); default 0.3 */
+  double material_thickness;            /**< m, (0, 10]; default 1e-3 */
+  double material_density;              /**< kg/m³, (0, 1e6]; default 200 */
+  double solver_newton_tolerance;       /**< 1, (0, 1]; default 1e-5 */
+  int32_t solver_max_newton_iterations; /**< ≥ 1; default 100 */
+  ps_mode mode;                         /**< default PS_MODE_DYNAMIC */
+  uint32_t effects;                     /**< ps_effect bits; default membrane|bending|gravity */
+  double gravity[3];                    /**< m/s²; default (0, −9.81, 0) */
+  double pressure;                      /**< Pa, needs PS_EFFECT_PRESSURE; default 0 */
+  /** Finest-level vertices held still (handle 0). Nullable; borrowed during create. */
+  const int32_t* pinned_vertices;
+  size_t num_pinned_vertices; /**< entries in pinned_vertices; default 0 */
+  int32_t internal_cookie;    /**< set by ps_sim_def_init(); do not touch */
+} ps_sim_def;
+
+/** Fills def with the defaults above. def must not be NULL. */
+PS_API void ps_sim_def_init(ps_sim_def* def);
+
+/**
+ * Creates a simulation of `hierarchy` (borrowed: it must outlive the simulation) as
+ * described by `def` (nullable: defaults). Starts at level 0 at rest.
+ * @param out receives the simulation; caller owns, destroy with ps_sim_destroy().
+ * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_INVALID_SCENE (a parameter out of range, a
+ * pinned vertex out of range), PS_ERROR_NULL_ARGUMENT.
+ */
+PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* def, ps_sim** out);
+
+/**
+ * Creates a simulation from a JSON scene (format: scenes/README.md). Its bodies' meshes form
+ * the hierarchy, which the simulation owns (see ps_sim_hierarchy()).
+ * @param json     NUL-terminated scene text. Borrowed during the call.
+ * @param base_dir Nullable: directory that relative mesh paths in the scene start from
+ *                 (NULL: the current directory).
+ * Errors: PS_ERROR_INVALID_SCENE with the JSON path of the problem (unknown key, missing
+ * field, value out of range), PS_ERROR_INVALID_MESH, PS_ERROR_IO.
+ */
+PS_API int32_t ps_sim_create_from_scene(const char* json, const char* base_dir, ps_sim** out);
+
+/** As ps_sim_create_from_scene(), reading the scene from a file; relative mesh paths start
+ *  from the file's directory. */
+PS_API int32_t ps_sim_create_from_scene_file(const char* path, ps_sim** out);
+
+/** Destroys a simulation (and the hierarchy it owns, if any). Nullable (no-op). */
+PS_API void ps_sim_destroy(ps_sim* sim);
+
+/** Message of the last failed call on this simulation ("" if none). Borrowed until the next
+ *  call on it. A NULL sim gives ps_last_error(). */
+PS_API const char* ps_sim_last_error(const ps_sim* sim);
+
+/** The hierarchy this simulation runs on. Borrowed until ps_sim_destroy(). */
+PS_API int32_t ps_sim_hierarchy(const ps_sim* sim, const ps_hierarchy** out);
+
+/**
+ * Progress of long calls: called with done/total work units and the phase ("preview",
+ * "refine", "solve"). Return 0 to continue, non-zero to cancel: the call then returns
+ * PS_ERROR_CANCELLED after the last completed step, with the state of that step.
+ */
+typedef int32_t (*ps_progress_fn)(void* user_data, int32_t done, int32_t total, const char* phase);
+
+/** Installs (or with fn = NULL removes) the progress callback. user_data is passed back
+ *  unchanged (borrowed; the caller keeps it alive while installed). */
+PS_API int32_t ps_sim_set_progress_callback(ps_sim* sim, ps_progress_fn fn, void* user_data);
+
+/**
+ * Sets a numeric parameter by name between steps: any parameter-table name
+ * ("material.youngs_modulus", "simulation.time_step", "solver.newton_tolerance", ...) or
+ * "gravity.x", "gravity.y", "gravity.z" (m/s²), "pressure" (Pa, all bodies).
+ * Errors: PS_ERROR_INVALID_ARGUMENT for an unknown name (the message lists the known ones)
+ * or a value outside the parameter's range (NaN included); the simulation is unchanged.
+ */
+PS_API int32_t ps_sim_set_param(ps_sim* sim, const char* name, double value);
+
+/** Reads a parameter by name (names as in ps_sim_set_param()) into *out. */
+PS_API int32_t ps_sim_get_param(const ps_sim* sim, const char* name, double* out);
+
+/** Enables or disables one effect (a ps_effect bit) between steps. */
+PS_API int32_t ps_sim_set_effect(ps_sim* sim, uint32_t effect, int32_t enabled);
+
+/** The enabled effects (ps_effect bits) into *out. */
+PS_API int32_t ps_sim_get_effects(const ps_sim* sim, uint32_t* out);
+
+/** Number of handles (scripted vertex groups) into *out. */
+PS_API int32_t ps_sim_num_handles(const ps_sim* sim, int32_t* out);
+
+/**
+ * Scripts handle `handle` from the next step on: its vertices follow
+ * x(t) = c + R(ω t)(x̄ − c) + v t + offset, t the simulated time, x̄ the rest position,
+ * R the rotation about unit `axis` through `center` (m) at `angular_velocity` (rad/s),
+ * v = `velocity` (m/s) and `offset` (m) a translation a designer can drag. Any vector
+ * argument is nullable (zero; axis defaults to +z).
+ */
+PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const double velocity[3],
+                                        const double axis[3], const double center[3],
+                                        double angular_velocity, const double offset[3]);
+
+/**
+ * Advances `steps` steps at the current level (the preview while it is not the finest).
+ * Newton trouble does not fail the call: see the stats. Progress phase "preview".
+ * Errors: PS_ERROR_INVALID_ARGUMENT (steps < 1), PS_ERROR_CANCELLED, PS_ERROR_NUMERICAL.
+ */
+PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps);
+
+/**
+ * Refines the current level l to l + 1 (safe refinement), so that later steps run on the
+ * finer level. Errors: PS_ERROR_OUT_OF_RANGE at the finest level (the state is unchanged).
+ */
+PS_API int32_t ps_sim_refine(ps_sim* sim);
+
+/** The current level into *out (0 = coarsest). */
+PS_API int32_t ps_sim_current_level(const ps_sim* sim, int32_t* out);
+
+/**
+ * Positions of a level, (n × 3) doubles, into out[capacity]; *count = 3n. out is nullable
+ * (size query). The current level gives the current state; a coarser level its state when
+ * it was refined; a finer level the current state prolonged to it.
+ * Errors: PS_ERROR_OUT_OF_RANGE, PS_ERROR_BUFFER_TOO_SMALL.
+ */
+PS_API int32_t ps_sim_get_positions(const ps_sim* sim, int32_t level, double* out, size_t capacity,
+                                    size_t* count);
+
+/** Writes a level's current mesh (positions as ps_sim_get_positions(), faces of the level)
+ *  to `path`; the extension picks the format (.obj, .off, .ply). */
+PS_API int32_t ps_sim_write_mesh(const ps_sim* sim, int32_t level, const char* path);
+
+/** Per-level statistics, accumulated over every step taken at that level. */
+typedef struct ps_level_stats {
+  int32_t level;             /**< which level */
+  int32_t steps;             /**< steps taken at this level */
+  int32_t newton_iterations; /**< total Newton iterations */
+  int32_t converged_steps;   /**< steps whose Newton solve met the tolerance */
+  double seconds;            /**< wall time stepping at this level, s */
+  double energy;             /**< incremental potential after the last step, J */
+  double gradient_norm;      /**< ‖∇E‖ over free DOFs after the last step, N */
+  double simulated_time;     /**< simulated time reached, s */
+  /** RMS / max vertex distance to the converged finest solution over the bounding-box
+   *  diagonal; NaN until measured (progressive accuracy reports fill them). */
+  double error_rms;
+  double error_max;
+} ps_level_stats;
+
+/** Statistics of `level` into *out. Levels not visited yet report zeros (NaN errors). */
+PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level_stats* out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PROGSIM_H */

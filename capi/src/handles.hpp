@@ -1,0 +1,62 @@
+#pragma once
+/// @file What the C ABI's opaque handles hold.
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "api_guard.hpp"
+#include "mesh/triangle_mesh.hpp"
+#include "progsim.h"
+#include "scene/scene.hpp"
+#include "sim/direct_simulation.hpp"
+
+/// A mesh hierarchy; levels[0] is the coarsest, levels.back() the user's mesh.
+struct ps_hierarchy {
+  std::vector<progsim::TriangleMesh> levels;
+  mutable std::string last_error;
+};
+
+/// Counters of the steps taken at one level.
+struct LevelRecord {
+  int steps = 0, newton_iterations = 0, converged_steps = 0;
+  double seconds = 0.0, energy = 0.0, gradient_norm = 0.0, simulated_time = 0.0;
+  progsim::Positions positions;  ///< state when the level was left (empty while current)
+};
+
+/// A simulation: the direct solver of the current level and the records of every level.
+struct ps_sim {
+  const ps_hierarchy* hierarchy = nullptr;
+  std::unique_ptr<ps_hierarchy> owned_hierarchy;  ///< set when created from a scene
+  std::unique_ptr<progsim::DirectSimulation> simulation;
+  progsim::Scene scene;  ///< the scene as last set (parameters are edited here, then applied)
+  int level = 0;
+  std::vector<LevelRecord> records;
+  ps_progress_fn progress = nullptr;
+  void* progress_user_data = nullptr;
+  mutable std::string last_error;
+};
+
+namespace progsim::capi {
+
+/// Where a call on sim stores its error message: the handle, or the thread for NULL.
+inline std::string* error_slot(const ps_sim* sim) {
+  return sim ? &sim->last_error : nullptr;
+}
+
+/// The level's mesh; throws ApiError(PS_ERROR_OUT_OF_RANGE) naming the valid range.
+const TriangleMesh& level_mesh(const ps_hierarchy& hierarchy, int32_t level);
+
+/// The size-then-fill protocol of the header: *count = n; copies n values into out unless
+/// out is NULL (size query); out != NULL with capacity < n → PS_ERROR_BUFFER_TOO_SMALL.
+template <typename T>
+void copy_out(const T* values, std::size_t n, T* out, std::size_t capacity, std::size_t* count) {
+  require(count, "count");
+  if (out && capacity < n)
+    api_fail(PS_ERROR_BUFFER_TOO_SMALL, "the buffer holds " + std::to_string(capacity) +
+                                            " values but " + std::to_string(n) + " are needed");
+  if (out) std::copy(values, values + n, out);
+  *count = n;
+}
+
+}  // namespace progsim::capi

@@ -1,0 +1,177 @@
+// ps_sim_*: creating simulations and changing their parameters between steps.
+#include <filesystem>
+
+#include "handles.hpp"
+#include "scene/scene_json.hpp"
+#include "scene/scene_parameters.hpp"
+#include "sim_def.hpp"
+
+namespace progsim::capi {
+namespace {
+
+/// A simulation of scene on hierarchy (borrowed), starting at the coarsest level.
+std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
+  auto sim = std::make_unique<ps_sim>();
+  sim->hierarchy = hierarchy;
+  sim->scene = scene;
+  sim->simulation = std::make_unique<DirectSimulation>(std::move(scene));
+  sim->records.resize(hierarchy->levels.size());
+  return sim;
+}
+
+/// A simulation of a parsed scene that owns the hierarchy of its merged bodies.
+std::unique_ptr<ps_sim> sim_from_scene(Scene scene) {
+  auto hierarchy = std::make_unique<ps_hierarchy>();
+  auto simulation = std::make_unique<DirectSimulation>(scene);
+  hierarchy->levels.push_back(simulation->model().rest);
+  auto sim = std::make_unique<ps_sim>();
+  sim->hierarchy = hierarchy.get();
+  sim->owned_hierarchy = std::move(hierarchy);
+  sim->scene = std::move(scene);
+  sim->simulation = std::move(simulation);
+  sim->records.resize(1);
+  return sim;
+}
+
+/// Applies an edited copy of the scene; on failure the simulation keeps its old scene.
+template <typename Edit>
+void edit_scene(ps_sim& sim, Edit&& edit) {
+  Scene scene = sim.scene;
+  edit(scene);
+  sim.simulation->update_scene(scene);
+  sim.scene = std::move(scene);
+}
+
+const Vec3 vec3_or(const double* v, const Vec3& fallback) {
+  return v ? Vec3(v[0], v[1], v[2]) : fallback;
+}
+
+}  // namespace
+}  // namespace progsim::capi
+
+using namespace progsim;
+using namespace progsim::capi;
+
+extern "C" {
+
+PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* def, ps_sim** out) {
+  return guarded(nullptr, "ps_sim_create", [&] {
+    require(hierarchy, "hierarchy");
+    require(out, "out");
+    ps_sim_def defaults;
+    ps_sim_def_init(&defaults);
+    const TriangleMesh& finest = hierarchy->levels.back();
+    *out = make_sim(hierarchy, scene_from_def(def ? *def : defaults, finest)).release();
+  });
+}
+
+PS_API int32_t ps_sim_create_from_scene(const char* json, const char* base_dir, ps_sim** out) {
+  return guarded(nullptr, "ps_sim_create_from_scene", [&] {
+    require(json, "json");
+    require(out, "out");
+    *out = sim_from_scene(parse_scene(json, base_dir ? base_dir : ".")).release();
+  });
+}
+
+PS_API int32_t ps_sim_create_from_scene_file(const char* path, ps_sim** out) {
+  return guarded(nullptr, "ps_sim_create_from_scene_file", [&] {
+    require(path, "path");
+    require(out, "out");
+    *out = sim_from_scene(load_scene_file(path)).release();
+  });
+}
+
+PS_API void ps_sim_destroy(ps_sim* sim) {
+  delete sim;
+}
+
+PS_API const char* ps_sim_last_error(const ps_sim* sim) {
+  return sim ? sim->last_error.c_str() : ps_last_error();
+}
+
+PS_API int32_t ps_sim_hierarchy(const ps_sim* sim, const ps_hierarchy** out) {
+  return guarded(error_slot(sim), "ps_sim_hierarchy", [&] {
+    require(sim, "sim");
+    require(out, "out");
+    *out = sim->hierarchy;
+  });
+}
+
+PS_API int32_t ps_sim_set_progress_callback(ps_sim* sim, ps_progress_fn fn, void* user_data) {
+  return guarded(error_slot(sim), "ps_sim_set_progress_callback", [&] {
+    require(sim, "sim");
+    sim->progress = fn;
+    sim->progress_user_data = user_data;
+  });
+}
+
+PS_API int32_t ps_sim_set_param(ps_sim* sim, const char* name, double value) {
+  return guarded(error_slot(sim), "ps_sim_set_param", [&] {
+    require(sim, "sim");
+    require(name, "name");
+    edit_scene(*sim, [&](Scene& scene) { set_scene_parameter(scene, name, value); });
+  });
+}
+
+PS_API int32_t ps_sim_get_param(const ps_sim* sim, const char* name, double* out) {
+  return guarded(error_slot(sim), "ps_sim_get_param", [&] {
+    require(sim, "sim");
+    require(name, "name");
+    require(out, "out");
+    *out = scene_parameter(sim->scene, name);
+  });
+}
+
+PS_API int32_t ps_sim_set_effect(ps_sim* sim, uint32_t effect, int32_t enabled) {
+  return guarded(error_slot(sim), "ps_sim_set_effect", [&] {
+    require(sim, "sim");
+    if (effect == 0 || (effect & (effect - 1)) != 0)
+      api_fail(PS_ERROR_INVALID_ARGUMENT,
+               "effect = " + std::to_string(effect) + " is not a single ps_effect bit");
+    uint32_t bits = effect_bits(sim->scene.effects);
+    bits = enabled ? (bits | effect) : (bits & ~effect);
+    const EffectSet effects = effects_from_bits(bits);
+    edit_scene(*sim, [&](Scene& scene) { scene.effects = effects; });
+  });
+}
+
+PS_API int32_t ps_sim_get_effects(const ps_sim* sim, uint32_t* out) {
+  return guarded(error_slot(sim), "ps_sim_get_effects", [&] {
+    require(sim, "sim");
+    require(out, "out");
+    *out = effect_bits(sim->scene.effects);
+  });
+}
+
+PS_API int32_t ps_sim_num_handles(const ps_sim* sim, int32_t* out) {
+  return guarded(error_slot(sim), "ps_sim_num_handles", [&] {
+    require(sim, "sim");
+    require(out, "out");
+    *out = static_cast<int32_t>(sim->scene.handles.size());
+  });
+}
+
+PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const double velocity[3],
+                                        const double axis[3], const double center[3],
+                                        double angular_velocity, const double offset[3]) {
+  return guarded(error_slot(sim), "ps_sim_set_handle_motion", [&] {
+    require(sim, "sim");
+    const auto n = static_cast<int32_t>(sim->scene.handles.size());
+    if (handle < 0 || handle >= n)
+      api_fail(PS_ERROR_OUT_OF_RANGE, "handle " + std::to_string(handle) +
+                                          " does not exist (the simulation has " +
+                                          std::to_string(n) + " handles)");
+    HandleMotion motion;
+    motion.velocity = vec3_or(velocity, Vec3::Zero());
+    motion.axis = vec3_or(axis, Vec3::UnitZ());
+    motion.center = vec3_or(center, Vec3::Zero());
+    motion.angular_velocity = angular_velocity;
+    motion.offset = vec3_or(offset, Vec3::Zero());
+    if (!(motion.axis.norm() > 0.0))
+      api_fail(PS_ERROR_INVALID_ARGUMENT, "the rotation axis must be non-zero and finite");
+    motion.axis.normalize();
+    edit_scene(*sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,68 @@
+#include "sim_def.hpp"
+
+#include "api_guard.hpp"
+#include "scene/scene_parameters.hpp"
+
+namespace progsim::capi {
+namespace {
+constexpr int32_t kSimCookie = 0x50535344;  // "PSSD"
+constexpr uint32_t kAllEffects =
+    PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_GRAVITY | PS_EFFECT_PRESSURE;
+}  // namespace
+
+uint32_t effect_bits(const EffectSet& effects) {
+  uint32_t bits = 0;
+  for (unsigned e = 0; e < static_cast<unsigned>(Effect::count_); ++e)
+    if (effects.has(static_cast<Effect>(e))) bits |= 1u << e;
+  return bits;
+}
+
+EffectSet effects_from_bits(uint32_t bits) {
+  if (bits & ~kAllEffects)
+    api_fail(PS_ERROR_INVALID_ARGUMENT,
+             "effects has unknown bits " + std::to_string(bits & ~kAllEffects));
+  EffectSet effects;
+  for (unsigned e = 0; e < static_cast<unsigned>(Effect::count_); ++e)
+    if (bits & (1u << e)) effects.enable(static_cast<Effect>(e));
+  return effects;
+}
+
+Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh) {
+  if (def.internal_cookie != kSimCookie)
+    api_fail(PS_ERROR_UNINITIALIZED_DEF, "the ps_sim_def was not filled by ps_sim_def_init()");
+  Scene scene;
+  scene.name = "c_api";
+  scene.bodies.push_back(Body{"body", mesh, ShellMaterial{}, 0.0, 0.0});
+  // Each table parameter group.name comes from the def field group_name.
+#define PROGSIM_PARAMETER(group, name, ...) \
+  set_scene_parameter(scene, #group "." #name, static_cast<double>(def.group##_##name));
+#include "scene/parameters.def"
+#undef PROGSIM_PARAMETER
+  if (def.mode != PS_MODE_DYNAMIC && def.mode != PS_MODE_QUASISTATIC)
+    api_fail(PS_ERROR_INVALID_ARGUMENT, "mode = " + std::to_string(def.mode) + " is not a ps_mode");
+  scene.mode = def.mode == PS_MODE_DYNAMIC ? StepMode::dynamic : StepMode::quasistatic;
+  scene.effects = effects_from_bits(def.effects);
+  scene.gravity = Vec3(def.gravity[0], def.gravity[1], def.gravity[2]);
+  set_scene_parameter(scene, "pressure", def.pressure);
+  if (def.num_pinned_vertices > 0) {
+    require(def.pinned_vertices, "def.pinned_vertices (with num_pinned_vertices > 0)");
+    Handle pinned;
+    pinned.vertices.assign(def.pinned_vertices, def.pinned_vertices + def.num_pinned_vertices);
+    scene.handles.push_back(pinned);
+  }
+  return scene;
+}
+
+}  // namespace progsim::capi
+
+extern "C" PS_API void ps_sim_def_init(ps_sim_def* def) {
+  if (!def) return;
+  *def = ps_sim_def{};
+#define PROGSIM_PARAMETER(group, name, default_value, ...) def->group##_##name = default_value;
+#include "scene/parameters.def"
+#undef PROGSIM_PARAMETER
+  def->mode = PS_MODE_DYNAMIC;
+  def->effects = PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_GRAVITY;
+  def->gravity[1] = -9.81;
+  def->internal_cookie = progsim::capi::kSimCookie;
+}

@@ -1,0 +1,16 @@
+#pragma once
+/// @file ps_sim_def ↔ Scene: the def's numeric fields are generated from the parameter table.
+#include "progsim.h"
+#include "scene/scene.hpp"
+
+namespace progsim::capi {
+
+/// The scene a def describes on the given mesh (one body, handle 0 = the pinned vertices).
+/// Throws ApiError(PS_ERROR_UNINITIALIZED_DEF) for a def not filled by ps_sim_def_init().
+Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh);
+
+/// The ps_effect bits of an effect set, and back.
+uint32_t effect_bits(const EffectSet& effects);
+EffectSet effects_from_bits(uint32_t bits);
+
+}  // namespace progsim::capi

@@ -1,0 +1,250 @@
+/*
+ * The C ABI from C: the full cycle on a bundled mesh and every documented misuse.
+ * Usage: test_capi SOURCE_DIR. Exits non-zero (printing each failed check) on failure.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "progsim.h"
+
+static int failures = 0;
+
+#define CHECK(cond)                                                            \
+  do {                                                                         \
+    if (!(cond)) {                                                             \
+      fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
+      ++failures;                                                              \
+    }                                                                          \
+  } while (0)
+
+/* status == expected and the message contains `needle`. */
+#define CHECK_ERROR(status, expected, message, needle)                                        \
+  do {                                                                                        \
+    const int32_t s_ = (status);                                                              \
+    const char* m_ = (message);                                                               \
+    if (s_ != (expected) || !strstr(m_, (needle))) {                                          \
+      fprintf(stderr, "%s:%d: expected %s with \"%s\", got %s: \"%s\"\n", __FILE__, __LINE__, \
+              ps_status_name(expected), (needle), ps_status_name(s_), m_);                    \
+      ++failures;                                                                             \
+    }                                                                                         \
+  } while (0)
+
+static char source_dir[4096];
+
+static const char* path_in_source(const char* relative) {
+  static char path[8192];
+  snprintf(path, sizeof path, "%s/%s", source_dir, relative);
+  return path;
+}
+
+/* A 2 × 2 grid of unit squares (9 vertices, 8 faces) in the x-y plane. */
+static const double kGridVertices[27] = {0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 1, 0, 1, 1,
+                                         0, 2, 1, 0, 0, 2, 0, 1, 2, 0, 2, 2, 0};
+static const int32_t kGridFaces[24] = {0, 1, 4, 0, 4, 3, 1, 2, 4, 2, 5, 4,
+                                       3, 4, 6, 4, 7, 6, 4, 5, 8, 4, 8, 7};
+
+static void test_version(void) {
+  CHECK(ps_version() == PS_VERSION_HEADER);
+  CHECK(ps_check_version(PS_VERSION_HEADER) == PS_OK);
+  CHECK_ERROR(ps_check_version(PS_VERSION_HEADER + 10000), PS_ERROR_VERSION_MISMATCH,
+              ps_last_error(), "rebuild the caller");
+  CHECK(strcmp(ps_status_name(PS_ERROR_INVALID_MESH), "PS_ERROR_INVALID_MESH") == 0);
+}
+
+static int32_t cancel_after_two(void* user_data, int32_t done, int32_t total, const char* phase) {
+  int* calls = (int*)user_data;
+  ++*calls;
+  (void)total;
+  CHECK(strcmp(phase, "preview") == 0);
+  return done >= 2;
+}
+
+static void test_full_cycle(void) {
+  ps_hierarchy* h = NULL;
+  CHECK(ps_hierarchy_create_from_file(NULL, path_in_source("scenes/meshes/square_cloth.obj"), &h) ==
+        PS_OK);
+  if (!h) return;
+  int32_t levels = 0;
+  size_t nv = 0, nf = 0, count = 0;
+  CHECK(ps_hierarchy_num_levels(h, &levels) == PS_OK && levels == 1);
+  CHECK(ps_hierarchy_level_size(h, 0, &nv, &nf) == PS_OK && nv == 441 && nf == 800);
+
+  ps_sim_def def;
+  ps_sim_def_init(&def);
+  const int32_t corners[2] = {420, 440}; /* (0, 1, 0) and (1, 1, 0) */
+  def.pinned_vertices = corners;
+  def.num_pinned_vertices = 2;
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
+  if (!sim) return;
+  CHECK(ps_sim_set_param(sim, "material.thickness", 5e-4) == PS_OK);
+  double value = 0;
+  CHECK(ps_sim_get_param(sim, "material.thickness", &value) == PS_OK && value == 5e-4);
+  CHECK(ps_sim_set_param(sim, "gravity.y", 0.0) == PS_OK); /* fall out of the cloth's plane */
+  CHECK(ps_sim_set_param(sim, "gravity.z", -9.0) == PS_OK);
+  CHECK(ps_sim_get_param(sim, "gravity.z", &value) == PS_OK && value == -9.0);
+  CHECK(ps_sim_set_effect(sim, PS_EFFECT_BENDING, 0) == PS_OK);
+  uint32_t effects = 0;
+  CHECK(ps_sim_get_effects(sim, &effects) == PS_OK &&
+        effects == (PS_EFFECT_MEMBRANE | PS_EFFECT_GRAVITY));
+
+  CHECK(ps_sim_step_preview(sim, 10) == PS_OK);
+  CHECK(ps_sim_get_positions(sim, 0, NULL, 0, &count) == PS_OK && count == 3 * 441);
+  double* x = malloc(count * sizeof(double));
+  CHECK(ps_sim_get_positions(sim, 0, x, count, &count) == PS_OK);
+  double lowest = INFINITY;
+  for (size_t i = 0; i < 441; ++i) lowest = fmin(lowest, x[3 * i + 2]);
+  CHECK(lowest < -0.03); /* started flat at z = 0; free fall gives 0.045 m in 0.1 s */
+  CHECK(x[3 * 420 + 2] == 0.0 && x[3 * 440 + 2] == 0.0); /* pinned corners held */
+  free(x);
+
+  ps_level_stats stats;
+  CHECK(ps_sim_get_level_stats(sim, 0, &stats) == PS_OK);
+  CHECK(stats.steps == 10 && stats.newton_iterations >= 10 && stats.seconds > 0);
+  CHECK(isfinite(stats.energy) && isnan(stats.error_rms));
+
+  int calls = 0;
+  CHECK(ps_sim_set_progress_callback(sim, cancel_after_two, &calls) == PS_OK);
+  CHECK_ERROR(ps_sim_step_preview(sim, 10), PS_ERROR_CANCELLED, ps_sim_last_error(sim),
+              "after 2 of 10");
+  CHECK(calls == 2);
+  CHECK(ps_sim_get_level_stats(sim, 0, &stats) == PS_OK && stats.steps == 12);
+
+  CHECK_ERROR(ps_sim_refine(sim), PS_ERROR_OUT_OF_RANGE, ps_sim_last_error(sim), "finest level 0");
+  const double offset[3] = {0.1, 0, 0};
+  CHECK(ps_sim_set_handle_motion(sim, 0, NULL, NULL, NULL, 0.0, offset) == PS_OK);
+  CHECK(ps_sim_set_progress_callback(sim, NULL, NULL) == PS_OK);
+  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
+  double corner[3 * 441];
+  CHECK(ps_sim_get_positions(sim, 0, corner, 3 * 441, &count) == PS_OK);
+  CHECK(fabs(corner[3 * 420] - 0.1) < 1e-12); /* the dragged handle moved */
+  ps_sim_destroy(sim);
+  ps_hierarchy_destroy(h);
+}
+
+static void test_misuse(void) {
+  ps_hierarchy* h = NULL;
+  ps_sim* sim = NULL;
+  int32_t levels = 0;
+  size_t count = 0;
+  CHECK_ERROR(ps_hierarchy_num_levels(NULL, &levels), PS_ERROR_NULL_ARGUMENT, ps_last_error(),
+              "hierarchy is NULL");
+  CHECK_ERROR(ps_sim_step_preview(NULL, 1), PS_ERROR_NULL_ARGUMENT, ps_last_error(), "sim is NULL");
+  CHECK(strstr(ps_sim_last_error(NULL), "sim is NULL") != NULL);
+  ps_sim_destroy(NULL);
+  ps_hierarchy_destroy(NULL);
+
+  double nan_vertices[27];
+  memcpy(nan_vertices, kGridVertices, sizeof nan_vertices);
+  nan_vertices[3 * 4 + 1] = NAN;
+  CHECK_ERROR(ps_hierarchy_create(NULL, nan_vertices, 9, kGridFaces, 8, &h), PS_ERROR_INVALID_MESH,
+              ps_last_error(), "vertex 4");
+  CHECK(h == NULL);
+  int32_t bad_faces[24];
+  memcpy(bad_faces, kGridFaces, sizeof bad_faces);
+  bad_faces[5] = 9;
+  CHECK_ERROR(ps_hierarchy_create(NULL, kGridVertices, 9, bad_faces, 8, &h), PS_ERROR_INVALID_MESH,
+              ps_last_error(), "9");
+  ps_hierarchy_def hdef;
+  memset(&hdef, 0, sizeof hdef);
+  CHECK_ERROR(ps_hierarchy_create(&hdef, kGridVertices, 9, kGridFaces, 8, &h),
+              PS_ERROR_UNINITIALIZED_DEF, ps_last_error(), "ps_hierarchy_def_init");
+  ps_hierarchy_def_init(&hdef);
+  const int32_t coarse[1] = {4};
+  hdef.coarse_vertex_counts = coarse;
+  hdef.num_coarse_levels = 1;
+  CHECK_ERROR(ps_hierarchy_create(&hdef, kGridVertices, 9, kGridFaces, 8, &h), PS_ERROR_UNSUPPORTED,
+              ps_last_error(), "coarse levels");
+  CHECK_ERROR(ps_hierarchy_create_from_file(NULL, "/nonexistent/mesh.obj", &h), PS_ERROR_IO,
+              ps_last_error(), "/nonexistent/mesh.obj");
+
+  CHECK(ps_hierarchy_create(NULL, kGridVertices, 9, kGridFaces, 8, &h) == PS_OK);
+  if (!h) return;
+  CHECK_ERROR(ps_hierarchy_level_size(h, 1, NULL, NULL), PS_ERROR_OUT_OF_RANGE,
+              ps_hierarchy_last_error(h), "level 1 does not exist");
+  double small[6];
+  CHECK_ERROR(ps_hierarchy_get_rest_positions(h, 0, small, 6, &count), PS_ERROR_BUFFER_TOO_SMALL,
+              ps_hierarchy_last_error(h), "27 are needed");
+
+  ps_sim_def def;
+  memset(&def, 0, sizeof def);
+  CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_UNINITIALIZED_DEF, ps_last_error(),
+              "ps_sim_def_init");
+  ps_sim_def_init(&def);
+  def.material_poisson_ratio = 0.5;
+  CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_INVALID_ARGUMENT, ps_last_error(),
+              "material.poisson_ratio");
+  ps_sim_def_init(&def);
+  const int32_t out_of_range[1] = {99};
+  def.pinned_vertices = out_of_range;
+  def.num_pinned_vertices = 1;
+  CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_INVALID_SCENE, ps_last_error(), "vertex 99");
+  CHECK(sim == NULL);
+
+  CHECK(ps_sim_create(h, NULL, &sim) == PS_OK);
+  if (!sim) return;
+  CHECK_ERROR(ps_sim_set_param(sim, "material.thicknes", 1e-3), PS_ERROR_INVALID_ARGUMENT,
+              ps_sim_last_error(sim), "unknown parameter 'material.thicknes'");
+  CHECK_ERROR(ps_sim_set_param(sim, "material.thickness", NAN), PS_ERROR_INVALID_ARGUMENT,
+              ps_sim_last_error(sim), "material.thickness");
+  CHECK_ERROR(ps_sim_set_param(sim, "simulation.time_step", -1), PS_ERROR_INVALID_ARGUMENT,
+              ps_sim_last_error(sim), "simulation.time_step");
+  double value = 0;
+  CHECK(ps_sim_get_param(sim, "simulation.time_step", &value) == PS_OK && value == 0.01);
+  CHECK_ERROR(ps_sim_set_effect(sim, 3, 1), PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),
+              "single ps_effect bit");
+  CHECK_ERROR(ps_sim_step_preview(sim, 0), PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),
+              "steps = 0");
+  CHECK_ERROR(ps_sim_get_positions(sim, 2, NULL, 0, &count), PS_ERROR_OUT_OF_RANGE,
+              ps_sim_last_error(sim), "level 2 does not exist");
+  CHECK_ERROR(ps_sim_get_positions(sim, 0, NULL, 0, NULL), PS_ERROR_NULL_ARGUMENT,
+              ps_sim_last_error(sim), "count is NULL");
+  CHECK_ERROR(ps_sim_set_handle_motion(sim, 0, NULL, NULL, NULL, 0, NULL), PS_ERROR_OUT_OF_RANGE,
+              ps_sim_last_error(sim), "handle 0 does not exist");
+  CHECK_ERROR(ps_sim_write_mesh(sim, 0, "/nonexistent/dir/out.obj"), PS_ERROR_IO,
+              ps_sim_last_error(sim), "/nonexistent/dir/out.obj");
+  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
+  CHECK(strcmp(ps_sim_last_error(sim), "") == 0); /* success clears the message */
+  ps_sim_destroy(sim);
+  ps_hierarchy_destroy(h);
+
+  sim = NULL;
+  CHECK_ERROR(ps_sim_create_from_scene("{\"bodies\": [], \"efects\": []}", NULL, &sim),
+              PS_ERROR_INVALID_SCENE, ps_last_error(), "efects");
+  CHECK_ERROR(ps_sim_create_from_scene("{ not json", NULL, &sim), PS_ERROR_INVALID_SCENE,
+              ps_last_error(), "");
+  CHECK(sim == NULL);
+}
+
+static void test_scene_file(void) {
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create_from_scene_file(path_in_source("scenes/hanging_cloth.json"), &sim) == PS_OK);
+  if (!sim) return;
+  const ps_hierarchy* h = NULL;
+  size_t nv = 0;
+  CHECK(ps_sim_hierarchy(sim, &h) == PS_OK && h != NULL);
+  CHECK(ps_hierarchy_level_size(h, 0, &nv, NULL) == PS_OK && nv > 0);
+  int32_t handles = 0;
+  CHECK(ps_sim_num_handles(sim, &handles) == PS_OK && handles >= 1);
+  CHECK(ps_sim_step_preview(sim, 2) == PS_OK);
+  ps_sim_destroy(sim);
+}
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fprintf(stderr, "usage: test_capi SOURCE_DIR\n");
+    return 2;
+  }
+  snprintf(source_dir, sizeof source_dir, "%s", argv[1]);
+  test_version();
+  test_full_cycle();
+  test_misuse();
+  test_scene_file();
+  if (failures)
+    fprintf(stderr, "%d checks failed\n", failures);
+  else
+    printf("all C ABI checks passed\n");
+  return failures ? 1 : 0;
+}
