@@ -1,25 +1,38 @@
 #!/usr/bin/env bash
 # Installs everything progsim needs on a Debian machine, idempotently: the Debian packages of
-# the C++ build, then (as later parts of the product arrive) Python and Rust pieces.
+# the C++ build and the sanitizer/fuzzer build (clang), the Python packages of the cffi
+# bindings and their tests, and a Rust toolchain for the bindgen crates.
 set -euo pipefail
 
 APT_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas-openmp-dev libcgal-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev
-  clang-format
+  clang-format clang-14 libclang-rt-14-dev libomp-14-dev libclang-dev
+  python3-pip python3-venv
 )
 
+sudo_cmd=""
+[ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
 missing=()
 for pkg in "${APT_PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "ok installed" || missing+=("$pkg")
 done
 if ((${#missing[@]})); then
-  sudo_cmd=""
-  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
   echo "install_deps: installing ${missing[*]}"
   $sudo_cmd apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
 else
   echo "install_deps: all Debian packages present"
+fi
+
+PYTHON=${PYTHON:-python3}
+if ! "$PYTHON" -c "import cffi, numpy, tqdm, pytest, setuptools" 2>/dev/null; then
+  echo "install_deps: installing Python packages"
+  "$PYTHON" -m pip install -q --disable-pip-version-check cffi numpy tqdm pytest setuptools
+fi
+
+if ! command -v cargo >/dev/null 2>&1; then
+  echo "install_deps: installing Rust (Debian's cargo)"
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends cargo
 fi

@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Runs every test: installs what is needed, builds, runs the C++ tests in a normal build and
-# under AddressSanitizer + UBSan, and checks that an installed copy works with find_package.
+# Runs every test: installs what is needed, builds, and runs the C++ and C tests (normal build),
+# an installed-copy find_package check, the Python (cffi) and Rust (bindgen) binding tests,
+# then the C++/C tests again under AddressSanitizer + UBSan (clang) and 60 s of libFuzzer
+# over the scene parser and mesh loaders. CI runs exactly this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh
 scripts/fetch_test_meshes.sh
+export OMP_WAIT_POLICY=passive  # tests share the cores; idle OpenMP threads must sleep
 
-echo "== release build and tests =="
+echo "== release build: C++ and C tests =="
 scripts/build.sh release
 ctest --test-dir build/release --output-on-failure -j "$(nproc)"
 
@@ -17,7 +20,14 @@ cmake -S tests/consumer -B build/consumer -G Ninja -DCMAKE_PREFIX_PATH="$PWD/bui
 cmake --build build/consumer >/dev/null
 build/consumer/progsim_consumer
 
-echo "== AddressSanitizer + UBSan build and tests =="
-scripts/build.sh asan -DPROGSIM_SANITIZE=ON -DPROGSIM_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+echo "== Python bindings (cffi) =="
+scripts/test_python.sh
+
+echo "== Rust bindings (bindgen) =="
+scripts/test_rust.sh
+
+echo "== AddressSanitizer + UBSan build (clang): C++ and C tests, then libFuzzer =="
+CC=clang-14 CXX=clang++-14 scripts/build.sh asan -DPROGSIM_SANITIZE=ON -DPROGSIM_FUZZ=ON \
+  -DPROGSIM_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build/asan --output-on-failure -j "$(nproc)"
