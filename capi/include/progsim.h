@@ -20,10 +20,11 @@
  *   "borrowed" pointers stay valid until the event named and must not be freed.
  *
  * Thread contract: one handle is used by one thread at a time (calls on the same handle
- * must not overlap). Distinct handles may be used from distinct threads concurrently; a
- * handle may move between threads. A simulation reads its hierarchy, so a hierarchy shared
- * by simulations on several threads must not be destroyed while any of them runs.
- * Callbacks run on the calling thread and must not call back into progsim.
+ * must not overlap; every call, even a getter, stores its error message in the handle, and a
+ * successful call clears it, so copy a message before the next call). Distinct handles may be used
+ * from distinct threads concurrently; a handle may move between threads. A simulation reads its
+ * hierarchy, so a hierarchy shared by simulations on several threads must not be destroyed while
+ * any of them runs. Callbacks run on the calling thread and must not call back into progsim.
  */
 #ifndef PROGSIM_H
 #define PROGSIM_H
@@ -70,6 +71,8 @@ PS_API int32_t ps_check_version(int32_t header_version);
 /* ---------------------------------------------------------------- status --------------- */
 
 /** Result of every fallible call. Values are stable across versions. */
+/* Functions return int32_t, not the enum: enums with a _FORCE32 member may be unsigned in a
+ * binding's generated types, while status values are compared as int32_t. */
 typedef enum ps_status {
   PS_OK = 0,
   PS_ERROR_INVALID_ARGUMENT = 1,   /**< a parameter is NaN, out of range or nonsense */
@@ -217,8 +220,9 @@ PS_API void ps_sim_def_init(ps_sim_def* def);
  * Creates a simulation of `hierarchy` (borrowed: it must outlive the simulation) as
  * described by `def` (nullable: defaults). Starts at level 0 at rest.
  * @param out receives the simulation; caller owns, destroy with ps_sim_destroy().
- * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_INVALID_SCENE (a parameter out of range, a
- * pinned vertex out of range), PS_ERROR_NULL_ARGUMENT.
+ * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_INVALID_ARGUMENT (a parameter NaN or out of
+ * its range, naming it), PS_ERROR_INVALID_SCENE (a pinned vertex out of range),
+ * PS_ERROR_NULL_ARGUMENT.
  */
 PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* def, ps_sim** out);
 
@@ -244,13 +248,16 @@ PS_API void ps_sim_destroy(ps_sim* sim);
  *  call on it. A NULL sim gives ps_last_error(). */
 PS_API const char* ps_sim_last_error(const ps_sim* sim);
 
-/** The hierarchy this simulation runs on. Borrowed until ps_sim_destroy(). */
+/** The hierarchy this simulation runs on. Borrowed until ps_sim_destroy(). Calls on it
+ *  store their error message in it, so it belongs to the thread that uses the simulation. */
 PS_API int32_t ps_sim_hierarchy(const ps_sim* sim, const ps_hierarchy** out);
 
 /**
- * Progress of long calls: called with done/total work units and the phase ("preview",
- * "refine", "solve"). Return 0 to continue, non-zero to cancel: the call then returns
- * PS_ERROR_CANCELLED after the last completed step, with the state of that step.
+ * Progress of long calls: called after each unit of work with done/total units and the
+ * phase ("preview" for ps_sim_step_preview(); refinement will report "refine"). Return 0 to
+ * continue, non-zero to cancel: the call then returns PS_ERROR_CANCELLED (also when the
+ * last unit was done), keeping the state of the last completed step. The callback must not
+ * call the simulation that is running; other handles and the handle-free calls are fine.
  */
 typedef int32_t (*ps_progress_fn)(void* user_data, int32_t done, int32_t total, const char* phase);
 
@@ -284,7 +291,8 @@ PS_API int32_t ps_sim_num_handles(const ps_sim* sim, int32_t* out);
  * x(t) = c + R(ω t)(x̄ − c) + v t + offset, t the simulated time, x̄ the rest position,
  * R the rotation about unit `axis` through `center` (m) at `angular_velocity` (rad/s),
  * v = `velocity` (m/s) and `offset` (m) a translation a designer can drag. Any vector
- * argument is nullable (zero; axis defaults to +z).
+ * argument is nullable (zero; axis defaults to +z). Errors: PS_ERROR_OUT_OF_RANGE (no such
+ * handle), PS_ERROR_INVALID_ARGUMENT (a NaN/Inf value or a zero axis).
  */
 PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const double velocity[3],
                                         const double axis[3], const double center[3],
@@ -293,7 +301,9 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
 /**
  * Advances `steps` steps at the current level (the preview while it is not the finest).
  * Newton trouble does not fail the call: see the stats. Progress phase "preview".
- * Errors: PS_ERROR_INVALID_ARGUMENT (steps < 1), PS_ERROR_CANCELLED, PS_ERROR_NUMERICAL.
+ * Errors: PS_ERROR_INVALID_ARGUMENT (steps < 1), PS_ERROR_CANCELLED, PS_ERROR_NUMERICAL
+ * (a step produced non-finite positions; the simulation keeps that step's state, so reading
+ * positions shows the failure, and should be destroyed or its parameters changed).
  */
 PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps);
 

@@ -1,5 +1,5 @@
 // ps_sim_*: creating simulations and changing their parameters between steps.
-#include <filesystem>
+#include <cmath>
 
 #include "handles.hpp"
 #include "scene/scene_json.hpp"
@@ -167,7 +167,10 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
     motion.center = vec3_or(center, Vec3::Zero());
     motion.angular_velocity = angular_velocity;
     motion.offset = vec3_or(offset, Vec3::Zero());
-    if (!(motion.axis.norm() > 0.0))
+    if (!motion.velocity.allFinite() || !motion.center.allFinite() || !motion.offset.allFinite() ||
+        !std::isfinite(angular_velocity))
+      api_fail(PS_ERROR_INVALID_ARGUMENT, "the motion has a non-finite value");
+    if (!(motion.axis.norm() > 0.0) || !motion.axis.allFinite())
       api_fail(PS_ERROR_INVALID_ARGUMENT, "the rotation axis must be non-zero and finite");
     motion.axis.normalize();
     edit_scene(*sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });

@@ -45,8 +45,7 @@ PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps) {
       if (!sim->simulation->dofs().allFinite())
         api_fail(PS_ERROR_NUMERICAL,
                  "step " + std::to_string(step.step) + " produced non-finite positions");
-      if (sim->progress && sim->progress(sim->progress_user_data, s + 1, steps, "preview") != 0 &&
-          s + 1 < steps)
+      if (sim->progress && sim->progress(sim->progress_user_data, s + 1, steps, "preview") != 0)
         api_fail(PS_ERROR_CANCELLED, "cancelled by the progress callback after " +
                                          std::to_string(s + 1) + " of " + std::to_string(steps) +
                                          " steps");

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "common/error.hpp"
+#include "common/parallel.hpp"
 
 namespace progsim {
 namespace {
@@ -88,7 +89,7 @@ Pressure::Pressure(const Positions& rest, const Faces& faces, double pressure)
 
 double Pressure::volume(const Vector& x) const {
   double total = 0.0;
-#pragma omp parallel for reduction(+ : total) schedule(static)
+#pragma omp parallel for reduction(+ : total) schedule(static) if (num_elements() >= kMinParallelItems)
   for (int e = 0; e < num_elements(); ++e) total += element_volume(gather(e, x));
   return total;
 }
@@ -129,7 +130,7 @@ void Pressure::element_hessian(int, const LocalVector& xe, LocalMatrix& h) const
 
 void Pressure::hessian_values(const Vector& x, bool project_psd, double* values) const {
   const double s = pressure_ / 6.0;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (num_elements() >= kMinParallelItems)
   for (int f = 0; f < num_elements(); ++f) {
     const LocalVector xe = gather(f, x);
     Eigen::Map<LocalMatrix> h(values + static_cast<std::size_t>(f) * kDofs * kDofs);

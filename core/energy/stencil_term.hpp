@@ -5,6 +5,7 @@
 #include <array>
 #include <vector>
 
+#include "common/parallel.hpp"
 #include "energy/energy_term.hpp"
 #include "energy/psd_projection.hpp"
 
@@ -87,16 +88,16 @@ typename StencilTerm<K>::LocalVector StencilTerm<K>::gather(int e, const Vector&
 template <int K>
 double StencilTerm<K>::value(const Vector& x) const {
   double total = 0.0;
-#pragma omp parallel for reduction(+ : total) schedule(static)
+#pragma omp parallel for reduction(+ : total) schedule(static) if (num_elements() >= kMinParallelItems)
   for (int e = 0; e < num_elements(); ++e) total += element_value(e, gather(e, x));
   return total;
 }
 
 template <int K>
 void StencilTerm<K>::add_gradient(const Vector& x, Vector& g) const {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (num_elements() >= kMinParallelItems)
   for (int e = 0; e < num_elements(); ++e) element_gradient(e, gather(e, x), element_gradients_[e]);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (num_vertices_ >= kMinParallelItems)
   for (int v = 0; v < num_vertices_; ++v) {
     for (int i = incidence_offsets_[v]; i < incidence_offsets_[v + 1]; ++i) {
       const int slot = incidence_slots_[i];
@@ -119,7 +120,7 @@ void StencilTerm<K>::hessian_pattern(int* rows, int* cols) const {
 
 template <int K>
 void StencilTerm<K>::hessian_values(const Vector& x, bool project_psd, double* values) const {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (num_elements() >= kMinParallelItems)
   for (int e = 0; e < num_elements(); ++e) {
     Eigen::Map<LocalMatrix> h(values + static_cast<std::size_t>(e) * kDofs * kDofs);
     LocalMatrix local;

@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "common/error.hpp"
+#include "common/parallel.hpp"
 #include "common/timer.hpp"
 
 namespace progsim {
@@ -124,7 +125,7 @@ const Problem::SparseMatrix& Problem::hessian(const Vector& x, bool project_psd)
   }
   double* values = hessian_.valuePtr();
   const int nnz = static_cast<int>(hessian_.nonZeros());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nnz >= kMinParallelItems)
   for (int i = 0; i < nnz; ++i) {
     double sum = 0.0;
     for (int j = nonzero_entry_offsets_[i]; j < nonzero_entry_offsets_[i + 1]; ++j)
