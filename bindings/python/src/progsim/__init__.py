@@ -1,0 +1,80 @@
+"""progsim: progressive (level-of-detail) simulation of cloth and thin shells.
+
+Python bindings of the progsim C ABI (``progsim.h``) through cffi. Units are SI throughout
+(metres, seconds, kilograms, pascals, radians); positions are float64 (n, 3) numpy arrays,
+faces int32 (m, 3) arrays.
+
+Example::
+
+    import progsim
+
+    with progsim.Hierarchy.from_file("scenes/meshes/square_cloth.obj") as hierarchy:
+        with progsim.Simulation(hierarchy, pinned=[420, 440], gravity=(0, 0, -9.81)) as sim:
+            sim.step_preview(25, progress=True)
+            print(sim.positions()[:, 2].min(), sim.level_stats())
+
+Every failure raises a :class:`ProgsimError` subclass carrying the library's message, its
+status name (``.status``) and code (``.code``).
+"""
+
+from __future__ import annotations
+
+from ._progsim_cffi import ffi as _ffi, lib as _lib
+from . import _errors
+from ._errors import (  # noqa: F401 - re-exported through __all__
+    BufferTooSmallError,
+    CancelledError,
+    ClosedError,
+    IntersectingError,
+    InternalError,
+    InvalidArgumentError,
+    InvalidMeshError,
+    InvalidSceneError,
+    NullArgumentError,
+    NumericalError,
+    OutOfMemoryError,
+    OutOfRangeError,
+    ProgsimError,
+    ProgsimIOError,
+    UninitializedDefError,
+    UnsupportedError,
+    VersionMismatchError,
+    WrongCallOrderError,
+    status_name,
+)
+
+#: Version of this Python package.
+__version__ = "0.1.0"
+
+#: The header version these bindings were compiled against (major·10000 + minor·100 + patch).
+HEADER_VERSION: int = _lib.PS_VERSION_HEADER
+
+if _lib.ps_check_version(HEADER_VERSION) != _lib.PS_OK:
+    raise VersionMismatchError(_ffi.string(_lib.ps_last_error()).decode("utf-8", "replace"))
+
+from .hierarchy import Hierarchy  # noqa: E402 - after the version check
+from .simulation import EFFECTS, MODES, PARAMETERS, LevelStats, Simulation  # noqa: E402
+
+
+def library_version() -> str:
+    """The loaded libprogsim's version as text, e.g. ``"0.1.0"``."""
+    return _ffi.string(_lib.ps_version_string()).decode("ascii")
+
+
+def library_version_number() -> int:
+    """The loaded libprogsim's version packed as major·10000 + minor·100 + patch."""
+    return int(_lib.ps_version())
+
+
+__all__ = [
+    "Hierarchy",
+    "Simulation",
+    "LevelStats",
+    "EFFECTS",
+    "MODES",
+    "PARAMETERS",
+    "HEADER_VERSION",
+    "library_version",
+    "library_version_number",
+    "status_name",
+] + list(_errors.__all__)

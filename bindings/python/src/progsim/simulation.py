@@ -1,0 +1,575 @@
+"""Simulations (``ps_sim``): preview steps, refinement, results."""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass
+from typing import Any, Dict, FrozenSet, Iterable, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from ._errors import InvalidArgumentError, make_error
+from ._native import (
+    NativeObject,
+    ProgressArg,
+    ProgressRun,
+    _thread_state,
+    as_indices,
+    check_create,
+    decode,
+    int32_value,
+    fetch_rows,
+    three_floats,
+    vec3,
+)
+from ._progsim_cffi import ffi, lib
+from .hierarchy import Hierarchy, PathLike
+
+__all__ = ["Simulation", "LevelStats", "EFFECTS", "MODES", "PARAMETERS"]
+
+#: Effect names and their ``ps_effect`` bits.
+EFFECTS: Dict[str, int] = {
+    "membrane": lib.PS_EFFECT_MEMBRANE,
+    "bending": lib.PS_EFFECT_BENDING,
+    "gravity": lib.PS_EFFECT_GRAVITY,
+    "pressure": lib.PS_EFFECT_PRESSURE,
+}
+
+#: Step modes and their ``ps_mode`` values.
+MODES: Dict[str, int] = {
+    "dynamic": lib.PS_MODE_DYNAMIC,
+    "quasistatic": lib.PS_MODE_QUASISTATIC,
+}
+
+_GROUPS = ("simulation_", "material_", "solver_")
+
+#: Keyword → ps_sim_def field, for the parameter-table fields (``time_step`` →
+#: ``simulation_time_step``). Read from the compiled struct, so new table rows appear here.
+_DEF_FIELDS: Dict[str, str] = {
+    name.split("_", 1)[1]: name
+    for name, _ in ffi.typeof("ps_sim_def").fields
+    if name.startswith(_GROUPS)
+}
+
+#: Every name :meth:`Simulation.set_param` knows: the parameter table's ``group.name``
+#: entries, ``gravity.x/y/z`` and ``pressure``.
+PARAMETERS: Tuple[str, ...] = tuple(
+    field.replace("_", ".", 1) for field in _DEF_FIELDS.values()
+) + ("gravity.x", "gravity.y", "gravity.z", "pressure")
+
+#: Short names accepted by set_param/get_param: ``thickness`` → ``material.thickness``.
+_ALIASES: Dict[str, str] = {
+    short: field.replace("_", ".", 1) for short, field in _DEF_FIELDS.items()
+}
+
+_INTEGER_PARAMETERS = frozenset(
+    field.replace("_", ".", 1)
+    for field, kind in ffi.typeof("ps_sim_def").fields
+    if field.startswith(_GROUPS) and kind.type.kind == "primitive" and "int" in kind.type.cname
+)
+
+
+@dataclass(frozen=True)
+class LevelStats:
+    """Statistics of one level, accumulated over every step taken at it (``ps_level_stats``)."""
+
+    level: int  #: which level
+    steps: int  #: steps taken at this level
+    newton_iterations: int  #: total Newton iterations
+    converged_steps: int  #: steps whose Newton solve met the tolerance
+    seconds: float  #: wall time stepping at this level, s
+    energy: float  #: incremental potential after the last step, J
+    gradient_norm: float  #: ‖∇E‖ over free DOFs after the last step, N
+    simulated_time: float  #: simulated time reached, s
+    error_rms: (
+        float  #: RMS distance to the converged finest solution / bbox diagonal (NaN until measured)
+    )
+    error_max: (
+        float  #: max distance to the converged finest solution / bbox diagonal (NaN until measured)
+    )
+
+
+def _effect_bit(name: str) -> int:
+    try:
+        return EFFECTS[name]
+    except (KeyError, TypeError):
+        raise InvalidArgumentError(
+            f"unknown effect {name!r}; the effects are {', '.join(EFFECTS)}"
+        ) from None
+
+
+def _effect_bits(effects: Union[str, Iterable[str]]) -> int:
+    if isinstance(effects, str):
+        effects = (effects,)
+    bits = 0
+    for name in effects:
+        bits |= _effect_bit(name)
+    return bits
+
+
+def _parameter_name(name: str) -> bytes:
+    if not isinstance(name, str):
+        raise InvalidArgumentError(f"a parameter name must be a str, got {name!r}")
+    return _ALIASES.get(name, name).encode("utf-8")
+
+
+def _real(value: Any, name: str) -> float:
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise InvalidArgumentError(f"{name} must be a real number, got {value!r}") from None
+
+
+def _integer_field(value: Any, name: str) -> int:
+    if isinstance(value, float) and value.is_integer():
+        value = int(value)
+    return int32_value(value, name)
+
+
+class Simulation(NativeObject):
+    """A progressive simulation: preview steps at the current level, then refinement.
+
+    Create one on a :class:`Hierarchy` with keyword parameters (SI units), or from a JSON
+    scene (:meth:`from_scene`, :meth:`from_scene_file`). The simulation keeps its hierarchy
+    alive. It is a context manager; :meth:`close` releases it (closing twice is harmless,
+    using a closed simulation raises :class:`~progsim.ClosedError`).
+
+    Level arguments accept negative values counted from the finest level (``-1``).
+    """
+
+    _last_error_fn = staticmethod(lib.ps_sim_last_error)
+
+    def __init__(
+        self,
+        hierarchy: Hierarchy,
+        *,
+        time_step: Optional[float] = None,
+        duration: Optional[float] = None,
+        output_every: Optional[int] = None,
+        youngs_modulus: Optional[float] = None,
+        poisson_ratio: Optional[float] = None,
+        thickness: Optional[float] = None,
+        density: Optional[float] = None,
+        newton_tolerance: Optional[float] = None,
+        max_newton_iterations: Optional[int] = None,
+        mode: str = "dynamic",
+        effects: Optional[Iterable[str]] = None,
+        gravity: Optional[Sequence[float]] = None,
+        pressure: Optional[float] = None,
+        pinned: Optional[Sequence[int]] = None,
+    ) -> None:
+        """Creates a simulation of ``hierarchy``, at rest on level 0.
+
+        Every parameter left as None keeps the library default (``progsim params`` lists
+        defaults and ranges).
+
+        Args:
+            hierarchy: the mesh hierarchy to simulate (kept alive by the simulation).
+            time_step: s, in (0, 100]; default 0.01.
+            duration: s, in (0, 1e7]; default 1 (used by CLI runs only).
+            output_every: steps, >= 1; default 1 (used by CLI runs only).
+            youngs_modulus: Pa, in (0, 1e13]; default 1e6.
+            poisson_ratio: dimensionless, in (-1, 0.5); default 0.3.
+            thickness: m, in (0, 10]; default 1e-3.
+            density: kg/m³, in (0, 1e6]; default 200.
+            newton_tolerance: dimensionless, in (0, 1]; default 1e-5.
+            max_newton_iterations: >= 1; default 100.
+            mode: ``"dynamic"`` (implicit Euler) or ``"quasistatic"`` (energy minimisation
+                per load step).
+            effects: names among ``membrane``, ``bending``, ``gravity``, ``pressure``;
+                default ``{"membrane", "bending", "gravity"}``.
+            gravity: (gx, gy, gz), m/s²; default (0, -9.81, 0).
+            pressure: Pa, applied when the ``pressure`` effect is on; default 0.
+            pinned: finest-level vertex indices held still (they form handle 0).
+
+        Raises:
+            InvalidArgumentError: a value out of range, an unknown mode or effect.
+            InvalidSceneError: a pinned vertex out of range.
+            ClosedError: ``hierarchy`` is closed.
+        """
+        super().__init__()
+        self._hierarchy: Optional[Hierarchy] = None
+        if not isinstance(hierarchy, Hierarchy):
+            raise InvalidArgumentError(f"hierarchy must be a progsim.Hierarchy, got {hierarchy!r}")
+        definition = ffi.new("ps_sim_def*")
+        lib.ps_sim_def_init(definition)
+        values = {
+            "time_step": time_step,
+            "duration": duration,
+            "output_every": output_every,
+            "youngs_modulus": youngs_modulus,
+            "poisson_ratio": poisson_ratio,
+            "thickness": thickness,
+            "density": density,
+            "newton_tolerance": newton_tolerance,
+            "max_newton_iterations": max_newton_iterations,
+        }
+        for keyword, value in values.items():
+            if value is None:
+                continue
+            field = _DEF_FIELDS[keyword]
+            if field.replace("_", ".", 1) in _INTEGER_PARAMETERS:
+                value = _integer_field(value, keyword)
+            else:
+                value = _real(value, keyword)
+            setattr(definition, field, value)
+        if mode not in MODES:
+            raise InvalidArgumentError(f"unknown mode {mode!r}; the modes are {', '.join(MODES)}")
+        definition.mode = MODES[mode]
+        if effects is not None:
+            definition.effects = _effect_bits(effects)
+        if gravity is not None:
+            definition.gravity = three_floats(gravity, "gravity")
+        if pressure is not None:
+            definition.pressure = _real(pressure, "pressure")
+        pinned_buffer = None
+        if pinned is not None:
+            pinned_array = as_indices(pinned, "pinned", "(k,)")
+            if pinned_array.size:
+                pinned_buffer = ffi.from_buffer("int32_t[]", pinned_array)
+                definition.pinned_vertices = pinned_buffer
+                definition.num_pinned_vertices = pinned_array.size
+
+        hierarchy_cdata = hierarchy._handle()
+        out = ffi.new("ps_sim**")
+        with hierarchy._lock:
+            status = lib.ps_sim_create(hierarchy_cdata, definition, out)
+        check_create(status)
+        del pinned_buffer
+
+        # The destructor holds the native hierarchy, so it is freed only after this
+        # simulation, whatever order the garbage collector or the caller picks.
+        borrowers = hierarchy._borrowers
+        borrowers.append(None)
+
+        def destroy(pointer, _keep=hierarchy_cdata, _destroy=lib.ps_sim_destroy):
+            _destroy(pointer)
+            borrowers.pop()
+
+        self._cdata = ffi.gc(out[0], destroy)
+        self._hierarchy = hierarchy
+
+    @classmethod
+    def from_scene(
+        cls, scene: Union[str, bytes, Mapping[str, Any]], base_dir: Optional[PathLike] = None
+    ) -> "Simulation":
+        """Creates a simulation from a JSON scene (format: ``scenes/README.md``).
+
+        The scene's bodies form the hierarchy, which the simulation owns (see
+        :attr:`hierarchy`).
+
+        Args:
+            scene: the scene as JSON text (comments allowed) or as a dict.
+            base_dir: folder that relative mesh paths start from (default: the current one).
+
+        Raises:
+            InvalidSceneError: unknown key, missing field or value out of range; the message
+                gives the JSON path (e.g. ``efects``).
+            InvalidMeshError, ProgsimIOError: a body's mesh is invalid or unreadable.
+        """
+        if isinstance(scene, os.PathLike):
+            raise InvalidArgumentError(
+                "from_scene() takes the scene's JSON text; use from_scene_file() for a path"
+            )
+        if isinstance(scene, Mapping):
+            scene = json.dumps(scene)
+        text = scene.encode("utf-8") if isinstance(scene, str) else bytes(scene)
+        if b"\0" in text:
+            raise InvalidArgumentError("the scene text contains a NUL character")
+        out = ffi.new("ps_sim**")
+        directory = ffi.NULL if base_dir is None else os.fsencode(base_dir)
+        check_create(lib.ps_sim_create_from_scene(text, directory, out))
+        return cls._owning(out[0])
+
+    @classmethod
+    def from_scene_file(cls, path: PathLike) -> "Simulation":
+        """Creates a simulation from a JSON scene file; relative mesh paths start from the
+        file's folder. Raises like :meth:`from_scene`, and :class:`ProgsimIOError` for an
+        unreadable file."""
+        out = ffi.new("ps_sim**")
+        check_create(lib.ps_sim_create_from_scene_file(os.fsencode(path), out))
+        return cls._owning(out[0])
+
+    @classmethod
+    def _owning(cls, pointer: "ffi.CData") -> "Simulation":
+        self = cls.__new__(cls)
+        NativeObject.__init__(self)
+        self._cdata = ffi.gc(pointer, lib.ps_sim_destroy)
+        self._hierarchy = None
+        return self
+
+    # -- structure --------------------------------------------------------------------------
+
+    @property
+    def hierarchy(self) -> Hierarchy:
+        """The hierarchy this simulation runs on: the one it was created with, or (for scenes,
+        or if that one was closed) a view valid while the simulation is open."""
+        if self._hierarchy is not None and not self._hierarchy.closed:
+            self._handle()
+            return self._hierarchy
+        out = ffi.new("const ps_hierarchy**")
+        self._call(lib.ps_sim_hierarchy, out)
+        return Hierarchy._borrowed(ffi.cast("ps_hierarchy*", out[0]), self)
+
+    @property
+    def num_levels(self) -> int:
+        """Number of levels of the hierarchy."""
+        return self.hierarchy.num_levels
+
+    @property
+    def current_level(self) -> int:
+        """The level steps run on now (0 = coarsest)."""
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_current_level, out)
+        return int(out[0])
+
+    def _level(self, level: Optional[int]) -> int:
+        if level is None:
+            return self.current_level
+        level = int32_value(level, "level")
+        if level < 0:
+            counted = self.num_levels + level
+            return counted if counted >= 0 else level
+        return level
+
+    @property
+    def num_handles(self) -> int:
+        """Number of handles (scripted vertex groups); ``pinned`` vertices form handle 0."""
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_num_handles, out)
+        return int(out[0])
+
+    # -- parameters ---------------------------------------------------------------------------
+
+    def set_param(self, name: str, value: float) -> None:
+        """Sets a numeric parameter between steps.
+
+        Args:
+            name: a parameter-table name such as ``"material.youngs_modulus"`` (Pa),
+                ``"simulation.time_step"`` (s), ``"solver.newton_tolerance"``, or
+                ``"gravity.x"``/``"gravity.y"``/``"gravity.z"`` (m/s²) or ``"pressure"``
+                (Pa, all bodies); the short keyword names (``"thickness"``...) work too.
+                :data:`PARAMETERS` lists them.
+            value: the new value, in the parameter's unit.
+
+        Raises:
+            InvalidArgumentError: unknown name (the message lists the known ones) or value
+                out of range (NaN included); the simulation is unchanged.
+        """
+        self._call(lib.ps_sim_set_param, _parameter_name(name), _real(value, name))
+
+    def get_param(self, name: str) -> Union[float, int]:
+        """The value of a numeric parameter (names as in :meth:`set_param`); integer
+        parameters come back as int."""
+        key = _parameter_name(name)
+        out = ffi.new("double*")
+        self._call(lib.ps_sim_get_param, key, out)
+        if key.decode() in _INTEGER_PARAMETERS:
+            return int(out[0])
+        return float(out[0])
+
+    @property
+    def gravity(self) -> Tuple[float, float, float]:
+        """Gravity (gx, gy, gz), m/s²; settable."""
+        x, y, z = (float(self.get_param(f"gravity.{axis}")) for axis in "xyz")
+        return (x, y, z)
+
+    @gravity.setter
+    def gravity(self, value: Sequence[float]) -> None:
+        components = three_floats(value, "gravity")
+        old = self.gravity
+        try:
+            for axis, component in zip("xyz", components):
+                self.set_param(f"gravity.{axis}", component)
+        except Exception:
+            for axis, component in zip("xyz", old):
+                self.set_param(f"gravity.{axis}", component)
+            raise
+
+    def set_effect(self, name: str, enabled: bool = True) -> None:
+        """Enables or disables one effect (``membrane``, ``bending``, ``gravity``,
+        ``pressure``) between steps."""
+        self._call(lib.ps_sim_set_effect, _effect_bit(name), 1 if enabled else 0)
+
+    @property
+    def effects(self) -> FrozenSet[str]:
+        """The enabled effects' names; assign a set of names to enable exactly those."""
+        out = ffi.new("uint32_t*")
+        self._call(lib.ps_sim_get_effects, out)
+        return frozenset(name for name, bit in EFFECTS.items() if out[0] & bit)
+
+    @effects.setter
+    def effects(self, names: Iterable[str]) -> None:
+        wanted = _effect_bits(names)
+        for name, bit in EFFECTS.items():  # enable first: never passes through "no effect"
+            if wanted & bit:
+                self.set_effect(name, True)
+        for name, bit in EFFECTS.items():
+            if not wanted & bit:
+                self.set_effect(name, False)
+
+    def set_handle_motion(
+        self,
+        handle: int,
+        velocity: Optional[Sequence[float]] = None,
+        axis: Optional[Sequence[float]] = None,
+        center: Optional[Sequence[float]] = None,
+        angular_velocity: float = 0.0,
+        offset: Optional[Sequence[float]] = None,
+    ) -> None:
+        """Scripts handle ``handle`` from the next step on.
+
+        Its vertices follow x(t) = c + R(ω t)(x̄ − c) + v t + offset, with t the simulated
+        time and x̄ the rest position.
+
+        Args:
+            handle: handle index, ``0 <= handle < num_handles``.
+            velocity: v, m/s (default zero).
+            axis: rotation axis (normalised; default +z).
+            center: c, the rotation centre, m (default the origin).
+            angular_velocity: ω, rad/s.
+            offset: a translation, m (default zero).
+
+        Raises:
+            OutOfRangeError: no such handle.
+            InvalidArgumentError: a zero or non-finite axis, a vector without 3 components.
+        """
+        self._call(
+            lib.ps_sim_set_handle_motion,
+            int32_value(handle, "handle"),
+            vec3(velocity, "velocity"),
+            vec3(axis, "axis"),
+            vec3(center, "center"),
+            _real(angular_velocity, "angular_velocity"),
+            vec3(offset, "offset"),
+        )
+
+    # -- stepping ------------------------------------------------------------------------------
+
+    def _run(
+        self,
+        function,
+        *args: Any,
+        progress: ProgressArg,
+        total: Optional[int] = None,
+        phase: Optional[str] = None,
+    ) -> None:
+        """Runs a long call with the progress trampoline installed (see :class:`ProgressRun`)."""
+        handle = self._handle()
+        run = ProgressRun(progress, total, phase)
+        user_data = ffi.new_handle(run)
+        depth = getattr(_thread_state, "callback_depth", 0)
+        with self._lock:
+            try:
+                status = lib.ps_sim_set_progress_callback(handle, lib._progsim_progress, user_data)
+                if status == lib.PS_OK:
+                    status = function(handle, *args)
+                message = decode(lib.ps_sim_last_error(handle)) if status != lib.PS_OK else ""
+            finally:
+                lib.ps_sim_set_progress_callback(handle, ffi.NULL, ffi.NULL)
+                _thread_state.callback_depth = depth
+                run.close()
+        run.reraise()  # an exception from the callback wins over the CancelledError it caused
+        if status != lib.PS_OK:
+            raise make_error(status, message)
+
+    def step_preview(self, steps: int = 1, progress: ProgressArg = False) -> None:
+        """Advances ``steps`` time steps at the current level.
+
+        Newton trouble does not fail the call (see :meth:`level_stats`).
+
+        Args:
+            steps: number of steps, >= 1.
+            progress: ``True`` for a tqdm progress bar, ``False`` for none, or a callable
+                ``(done, total, phase) -> bool`` called after each step; a true result
+                cancels. An exception raised by the callable cancels the call and is
+                re-raised here. Ctrl-C cancels cleanly (KeyboardInterrupt after the last
+                completed step).
+
+        Raises:
+            CancelledError: the callable asked to stop; the state is that of the last
+                completed step.
+            InvalidArgumentError: ``steps < 1``.
+            NumericalError: the solver produced non-finite positions.
+        """
+        steps = int32_value(steps, "steps")
+        self._run(
+            lib.ps_sim_step_preview,
+            steps,
+            progress=progress,
+            total=steps if steps >= 1 else None,
+            phase="preview",
+        )
+
+    def refine(self, progress: ProgressArg = False) -> None:
+        """Refines the current level l to l + 1, so that later steps run on the finer level.
+
+        Args:
+            progress: as for :meth:`step_preview` (phase ``"refine"``).
+
+        Raises:
+            OutOfRangeError: already at the finest level (the state is unchanged).
+        """
+        self._run(lib.ps_sim_refine, progress=progress)
+
+    # -- results ------------------------------------------------------------------------------
+
+    def positions(
+        self, level: Optional[int] = None, out: Optional[np.ndarray] = None
+    ) -> np.ndarray:
+        """Positions of ``level`` (default: the current one) as a float64 (n, 3) array, m.
+
+        The current level gives the current state, a coarser level its state when it was
+        refined, a finer level the current state prolonged to it.
+
+        Args:
+            out: optional C-contiguous float64 (n, 3) array to fill instead of a new one.
+
+        Raises:
+            OutOfRangeError: the level does not exist.
+        """
+        return fetch_rows(self._call, lib.ps_sim_get_positions, self._level(level), np.float64, out)
+
+    def write_mesh(self, level: Optional[int], path: PathLike) -> None:
+        """Writes a level's current mesh (``None``: the current level) to ``path``; the
+        extension picks the format (``.obj``, ``.off``, ``.ply``).
+
+        Raises:
+            ProgsimIOError: the file cannot be written.
+            OutOfRangeError: the level does not exist.
+        """
+        self._call(lib.ps_sim_write_mesh, self._level(level), os.fsencode(path))
+
+    def level_stats(self, level: Optional[int] = None) -> LevelStats:
+        """Statistics of ``level`` (default: the current one); levels not visited yet report
+        zeros and NaN errors.
+
+        Raises:
+            OutOfRangeError: the level does not exist.
+        """
+        out = ffi.new("ps_level_stats*")
+        self._call(lib.ps_sim_get_level_stats, self._level(level), out)
+        return LevelStats(
+            level=int(out.level),
+            steps=int(out.steps),
+            newton_iterations=int(out.newton_iterations),
+            converged_steps=int(out.converged_steps),
+            seconds=float(out.seconds),
+            energy=float(out.energy),
+            gradient_norm=float(out.gradient_norm),
+            simulated_time=float(out.simulated_time),
+            error_rms=float(out.error_rms),
+            error_max=float(out.error_max),
+        )
+
+    def __repr__(self) -> str:
+        if self.closed:
+            return "<progsim.Simulation (closed)>"
+        try:
+            return (
+                f"<progsim.Simulation level {self.current_level} of {self.num_levels}, "
+                f"t = {self.level_stats().simulated_time:g} s>"
+            )
+        except Exception:  # noqa: BLE001 - repr must not fail (e.g. inside a callback)
+            return "<progsim.Simulation>"
