@@ -1,0 +1,438 @@
+//! Plain data: how to build hierarchies and simulations, effects, handle motions, statistics.
+
+use std::fmt;
+use std::mem::MaybeUninit;
+use std::ops::BitOr;
+
+use progsim_sys as sys;
+
+use crate::{Error, Result, Status};
+
+/// How to build a [`Hierarchy`](crate::Hierarchy). The default (no coarse levels) gives one
+/// level: the input mesh itself.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct HierarchyDef {
+    /// Target vertex count of each level below the finest, increasing (coarsest first).
+    /// Non-empty lists give [`Status::Unsupported`] in this library version.
+    pub coarse_vertex_counts: Vec<i32>,
+}
+
+impl HierarchyDef {
+    /// The C def borrowing `self.coarse_vertex_counts`: valid while `self` is.
+    pub(crate) fn to_raw(&self) -> Result<sys::ps_hierarchy_def> {
+        let mut raw = MaybeUninit::<sys::ps_hierarchy_def>::uninit();
+        // SAFETY: ps_hierarchy_def_init() fills every field of a non-NULL def.
+        let mut raw = unsafe {
+            sys::ps_hierarchy_def_init(raw.as_mut_ptr());
+            raw.assume_init()
+        };
+        raw.num_coarse_levels = i32::try_from(self.coarse_vertex_counts.len()).map_err(|_| {
+            Error::new(Status::InvalidArgument, "too many coarse levels for the C ABI")
+        })?;
+        if !self.coarse_vertex_counts.is_empty() {
+            raw.coarse_vertex_counts = self.coarse_vertex_counts.as_ptr();
+        }
+        Ok(raw)
+    }
+}
+
+/// How steps advance.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// Implicit Euler with inertia (`PS_MODE_DYNAMIC`).
+    #[default]
+    Dynamic,
+    /// Each step minimises the potential energy at its loads (`PS_MODE_QUASISTATIC`).
+    Quasistatic,
+}
+
+impl Mode {
+    fn to_raw(self) -> sys::ps_mode {
+        match self {
+            Mode::Dynamic => sys::PS_MODE_DYNAMIC,
+            Mode::Quasistatic => sys::PS_MODE_QUASISTATIC,
+        }
+    }
+
+    fn from_raw(raw: sys::ps_mode) -> Option<Mode> {
+        match raw {
+            sys::PS_MODE_DYNAMIC => Some(Mode::Dynamic),
+            sys::PS_MODE_QUASISTATIC => Some(Mode::Quasistatic),
+            _ => None,
+        }
+    }
+}
+
+/// One physical effect; only enabled effects cost anything.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Effect {
+    /// Neo-Hookean membrane stretching.
+    Membrane,
+    /// Discrete hinge bending.
+    Bending,
+    /// Uniform gravity (see [`SimulationDef::gravity`]).
+    Gravity,
+    /// Uniform inner pressure of closed meshes (see [`SimulationDef::pressure`]).
+    Pressure,
+}
+
+impl Effect {
+    /// Every effect, in bit order.
+    pub const ALL: [Effect; 4] =
+        [Effect::Membrane, Effect::Bending, Effect::Gravity, Effect::Pressure];
+
+    /// The C `ps_effect` bit of this effect.
+    pub fn bit(self) -> u32 {
+        match self {
+            Effect::Membrane => sys::PS_EFFECT_MEMBRANE,
+            Effect::Bending => sys::PS_EFFECT_BENDING,
+            Effect::Gravity => sys::PS_EFFECT_GRAVITY,
+            Effect::Pressure => sys::PS_EFFECT_PRESSURE,
+        }
+    }
+}
+
+/// A set of [`Effect`]s (the C `ps_effect` bits). Build with `|`:
+/// `Effect::Membrane | Effect::Gravity`.
+#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub struct Effects(u32);
+
+impl Effects {
+    /// No effect at all.
+    pub const fn empty() -> Effects {
+        Effects(0)
+    }
+
+    /// Every effect this binding knows.
+    pub fn all() -> Effects {
+        Effect::ALL.into_iter().collect()
+    }
+
+    /// The set with exactly these bits, including bits this binding does not know (a newer
+    /// library's effects), which the library rejects if it does not know them either.
+    pub const fn from_bits_retain(bits: u32) -> Effects {
+        Effects(bits)
+    }
+
+    /// The C `ps_effect` bits.
+    pub const fn bits(self) -> u32 {
+        self.0
+    }
+
+    /// Whether `effect` is in the set.
+    pub fn contains(self, effect: Effect) -> bool {
+        self.0 & effect.bit() != 0
+    }
+
+    /// Whether the set is empty.
+    pub const fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// The set with `effect` added.
+    #[must_use]
+    pub fn with(self, effect: Effect) -> Effects {
+        Effects(self.0 | effect.bit())
+    }
+
+    /// The set with `effect` removed.
+    #[must_use]
+    pub fn without(self, effect: Effect) -> Effects {
+        Effects(self.0 & !effect.bit())
+    }
+
+    /// Adds (`enabled`) or removes `effect`.
+    pub fn set(&mut self, effect: Effect, enabled: bool) {
+        *self = if enabled { self.with(effect) } else { self.without(effect) };
+    }
+
+    /// The known effects in the set, in bit order.
+    pub fn iter(self) -> impl Iterator<Item = Effect> {
+        Effect::ALL.into_iter().filter(move |effect| self.contains(*effect))
+    }
+}
+
+impl fmt::Debug for Effects {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut set = f.debug_set();
+        set.entries(self.iter());
+        let unknown = self.0 & !Effects::all().0;
+        if unknown != 0 {
+            set.entry(&format_args!("{unknown:#x}"));
+        }
+        set.finish()
+    }
+}
+
+impl From<Effect> for Effects {
+    fn from(effect: Effect) -> Effects {
+        Effects(effect.bit())
+    }
+}
+
+impl FromIterator<Effect> for Effects {
+    fn from_iter<I: IntoIterator<Item = Effect>>(effects: I) -> Effects {
+        effects.into_iter().fold(Effects::empty(), Effects::with)
+    }
+}
+
+impl BitOr for Effect {
+    type Output = Effects;
+    fn bitor(self, other: Effect) -> Effects {
+        Effects::from(self).with(other)
+    }
+}
+
+impl BitOr<Effect> for Effects {
+    type Output = Effects;
+    fn bitor(self, other: Effect) -> Effects {
+        self.with(other)
+    }
+}
+
+impl BitOr for Effects {
+    type Output = Effects;
+    fn bitor(self, other: Effects) -> Effects {
+        Effects(self.0 | other.0)
+    }
+}
+
+/// A simulation described in code, for [`Simulation::new`](crate::Simulation::new).
+///
+/// [`Default`] gives the library's defaults (from `ps_sim_def_init()`, which follows the
+/// parameter table: `progsim params` prints it). Change fields with struct-update syntax:
+///
+/// ```
+/// # use progsim::{Effect, SimulationDef};
+/// let def = SimulationDef {
+///     pinned_vertices: vec![420, 440],
+///     gravity: [0.0, 0.0, -9.81],
+///     effects: Effect::Membrane | Effect::Gravity,
+///     ..SimulationDef::default()
+/// };
+/// assert_eq!(def.time_step, 0.01);
+/// ```
+///
+/// Ranges are checked when the simulation is created ([`Status::InvalidArgument`] naming
+/// the parameter). The C def's CLI-only fields (`simulation_duration`,
+/// `simulation_output_every`) keep their defaults: a binding steps explicitly.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SimulationDef {
+    /// Time step h, s, in (0, 100]; default 0.01 (`simulation.time_step`).
+    pub time_step: f64,
+    /// Young's modulus E, Pa, in (0, 1e13]; default 1e6 (`material.youngs_modulus`).
+    pub youngs_modulus: f64,
+    /// Poisson ratio ν, dimensionless, in (−1, 0.5); default 0.3 (`material.poisson_ratio`).
+    pub poisson_ratio: f64,
+    /// Shell thickness, m, in (0, 10]; default 1e-3 (`material.thickness`).
+    pub thickness: f64,
+    /// Volumetric density ρ, kg/m³, in (0, 1e6]; default 200 (`material.density`).
+    pub density: f64,
+    /// Newton stops when ‖p‖∞ / s < tolerance · bounding-box diagonal (s = h for dynamics,
+    /// 1 for quasistatics); dimensionless, in (0, 1]; default 1e-5
+    /// (`solver.newton_tolerance`).
+    pub newton_tolerance: f64,
+    /// Cap on Newton iterations per step, ≥ 1; default 100
+    /// (`solver.max_newton_iterations`). Hitting it is reported in [`LevelStats`], not an
+    /// error.
+    pub max_newton_iterations: i32,
+    /// How steps advance; default [`Mode::Dynamic`].
+    pub mode: Mode,
+    /// Enabled effects; default membrane, bending and gravity.
+    pub effects: Effects,
+    /// Gravity, m/s², `[gx, gy, gz]`; default `[0, -9.81, 0]`. Used while
+    /// [`Effect::Gravity`] is enabled.
+    pub gravity: [f64; 3],
+    /// Inner pressure, Pa; default 0. Used while [`Effect::Pressure`] is enabled.
+    pub pressure: f64,
+    /// Finest-level vertex indices held still; they form handle 0 (see
+    /// [`Simulation::set_handle_motion`](crate::Simulation::set_handle_motion)). Default:
+    /// none, and then the simulation has no handle.
+    pub pinned_vertices: Vec<i32>,
+}
+
+/// The C defaults, filled by `ps_sim_def_init()`.
+fn raw_sim_def() -> sys::ps_sim_def {
+    let mut raw = MaybeUninit::<sys::ps_sim_def>::uninit();
+    // SAFETY: ps_sim_def_init() fills every field of a non-NULL def.
+    unsafe {
+        sys::ps_sim_def_init(raw.as_mut_ptr());
+        raw.assume_init()
+    }
+}
+
+impl Default for SimulationDef {
+    fn default() -> SimulationDef {
+        let raw = raw_sim_def();
+        SimulationDef {
+            time_step: raw.simulation_time_step,
+            youngs_modulus: raw.material_youngs_modulus,
+            poisson_ratio: raw.material_poisson_ratio,
+            thickness: raw.material_thickness,
+            density: raw.material_density,
+            newton_tolerance: raw.solver_newton_tolerance,
+            max_newton_iterations: raw.solver_max_newton_iterations,
+            mode: Mode::from_raw(raw.mode).unwrap_or_default(),
+            effects: Effects::from_bits_retain(raw.effects),
+            gravity: raw.gravity,
+            pressure: raw.pressure,
+            pinned_vertices: Vec::new(),
+        }
+    }
+}
+
+impl SimulationDef {
+    /// The library's defaults (same as [`Default::default`]).
+    pub fn new() -> SimulationDef {
+        SimulationDef::default()
+    }
+
+    /// The C def borrowing `self.pinned_vertices`: valid while `self` is.
+    pub(crate) fn to_raw(&self) -> sys::ps_sim_def {
+        let mut raw = raw_sim_def();
+        raw.simulation_time_step = self.time_step;
+        raw.material_youngs_modulus = self.youngs_modulus;
+        raw.material_poisson_ratio = self.poisson_ratio;
+        raw.material_thickness = self.thickness;
+        raw.material_density = self.density;
+        raw.solver_newton_tolerance = self.newton_tolerance;
+        raw.solver_max_newton_iterations = self.max_newton_iterations;
+        raw.mode = self.mode.to_raw();
+        raw.effects = self.effects.bits();
+        raw.gravity = self.gravity;
+        raw.pressure = self.pressure;
+        if !self.pinned_vertices.is_empty() {
+            raw.pinned_vertices = self.pinned_vertices.as_ptr();
+            raw.num_pinned_vertices = self.pinned_vertices.len();
+        }
+        raw
+    }
+}
+
+/// A rigid script for a handle's vertices, from the next step on:
+/// x(t) = c + R(ω t)(x̄ − c) + v t + offset, with t the simulated time and x̄ the rest
+/// position. The default holds the vertices at rest.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HandleMotion {
+    /// v, m/s; default zero.
+    pub velocity: [f64; 3],
+    /// Rotation axis (any non-zero length; normalised by the library); default +z.
+    pub axis: [f64; 3],
+    /// c, the point the rotation axis passes through, m; default the origin.
+    pub center: [f64; 3],
+    /// ω, rad/s; default 0.
+    pub angular_velocity: f64,
+    /// A translation added on top (what a designer drags), m; default zero.
+    pub offset: [f64; 3],
+}
+
+impl Default for HandleMotion {
+    fn default() -> HandleMotion {
+        HandleMotion {
+            velocity: [0.0; 3],
+            axis: [0.0, 0.0, 1.0],
+            center: [0.0; 3],
+            angular_velocity: 0.0,
+            offset: [0.0; 3],
+        }
+    }
+}
+
+/// Statistics of one level, accumulated over every step taken at it. Levels not visited
+/// yet report zeros.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LevelStats {
+    /// Which level.
+    pub level: usize,
+    /// Steps taken at this level.
+    pub steps: usize,
+    /// Total Newton iterations over those steps.
+    pub newton_iterations: usize,
+    /// Steps whose Newton solve met the tolerance.
+    pub converged_steps: usize,
+    /// Wall time spent stepping at this level, s.
+    pub seconds: f64,
+    /// Incremental potential after the last step, J.
+    pub energy: f64,
+    /// ‖∇E‖ over the free degrees of freedom after the last step, N.
+    pub gradient_norm: f64,
+    /// Simulated time reached, s.
+    pub simulated_time: f64,
+    /// RMS vertex distance to the converged finest solution over the bounding-box diagonal
+    /// (dimensionless); `None` until measured (progressive accuracy reports fill it).
+    pub error_rms: Option<f64>,
+    /// Maximum vertex distance to the converged finest solution over the bounding-box
+    /// diagonal (dimensionless); `None` until measured.
+    pub error_max: Option<f64>,
+}
+
+impl From<sys::ps_level_stats> for LevelStats {
+    fn from(raw: sys::ps_level_stats) -> LevelStats {
+        let measured = |value: f64| (!value.is_nan()).then_some(value);
+        LevelStats {
+            level: crate::count_from(raw.level),
+            steps: crate::count_from(raw.steps),
+            newton_iterations: crate::count_from(raw.newton_iterations),
+            converged_steps: crate::count_from(raw.converged_steps),
+            seconds: raw.seconds,
+            energy: raw.energy,
+            gradient_norm: raw.gradient_norm,
+            simulated_time: raw.simulated_time,
+            error_rms: measured(raw.error_rms),
+            error_max: measured(raw.error_max),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_come_from_the_library() {
+        let def = SimulationDef::default();
+        assert_eq!(def.time_step, 0.01);
+        assert_eq!(def.youngs_modulus, 1e6);
+        assert_eq!(def.poisson_ratio, 0.3);
+        assert_eq!(def.thickness, 1e-3);
+        assert_eq!(def.density, 200.0);
+        assert_eq!(def.newton_tolerance, 1e-5);
+        assert_eq!(def.max_newton_iterations, 100);
+        assert_eq!(def.mode, Mode::Dynamic);
+        assert_eq!(def.effects, Effect::Membrane | Effect::Bending | Effect::Gravity);
+        assert_eq!(def.gravity, [0.0, -9.81, 0.0]);
+        assert_eq!(def.pressure, 0.0);
+        assert!(def.pinned_vertices.is_empty());
+    }
+
+    #[test]
+    fn raw_def_carries_every_field() {
+        let def = SimulationDef {
+            time_step: 0.02,
+            mode: Mode::Quasistatic,
+            effects: Effect::Membrane.into(),
+            gravity: [1.0, 2.0, 3.0],
+            pinned_vertices: vec![3, 5],
+            ..SimulationDef::default()
+        };
+        let raw = def.to_raw();
+        assert_eq!(raw.simulation_time_step, 0.02);
+        assert_eq!(raw.mode, sys::PS_MODE_QUASISTATIC);
+        assert_eq!(raw.effects, sys::PS_EFFECT_MEMBRANE);
+        assert_eq!(raw.gravity, [1.0, 2.0, 3.0]);
+        assert_eq!(raw.num_pinned_vertices, 2);
+        assert_eq!(raw.pinned_vertices, def.pinned_vertices.as_ptr());
+    }
+
+    #[test]
+    fn effect_sets_combine() {
+        let mut effects = Effect::Membrane | Effect::Gravity;
+        assert!(effects.contains(Effect::Gravity) && !effects.contains(Effect::Bending));
+        effects.set(Effect::Gravity, false);
+        effects.set(Effect::Pressure, true);
+        assert_eq!(effects.iter().collect::<Vec<_>>(), [Effect::Membrane, Effect::Pressure]);
+        assert_eq!(Effects::all().bits(), 0b1111);
+        assert_eq!(format!("{:?}", Effects::from_bits_retain(0x11)), "{Membrane, 0x10}");
+        assert!(Effects::empty().is_empty());
+    }
+}

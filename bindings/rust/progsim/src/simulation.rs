@@ -1,0 +1,495 @@
+//! [`Simulation`]: preview steps at the current level, refinement, results.
+
+use std::any::Any;
+use std::ffi::{c_char, c_void, CStr};
+use std::fmt;
+use std::marker::PhantomData;
+use std::mem::{ManuallyDrop, MaybeUninit};
+use std::panic::{self, AssertUnwindSafe};
+use std::path::Path;
+use std::ptr::{self, NonNull};
+
+use progsim_sys as sys;
+
+use crate::error::{check, check_thread};
+use crate::{
+    c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
+    CallbackScope, Effect, Effects, Error, HandleMotion, Hierarchy, LevelStats, Result,
+    SimulationDef, Status,
+};
+
+/// A simulation of one [`Hierarchy`]: preview steps at the current level (starting at level
+/// 0, at rest), then [`refine`](Self::refine) to finer levels.
+///
+/// The lifetime `'h` is that of the hierarchy the simulation reads, which the C library
+/// borrows: a `Simulation<'h>` from [`Simulation::new`] keeps its `&'h Hierarchy` borrowed,
+/// so the hierarchy cannot be dropped first. Scene simulations
+/// ([`from_scene`](Self::from_scene), [`from_scene_file`](Self::from_scene_file)) own their
+/// hierarchy inside the C library, which destroys it with the simulation; they borrow
+/// nothing and are `Simulation<'static>` (see [`hierarchy`](Self::hierarchy)).
+///
+/// ```compile_fail,E0505
+/// # use progsim::{Hierarchy, Simulation, SimulationDef};
+/// let hierarchy = Hierarchy::from_file("mesh.obj").unwrap();
+/// let sim = Simulation::new(&hierarchy, &SimulationDef::default()).unwrap();
+/// drop(hierarchy); // error: `hierarchy` is still borrowed by `sim`
+/// sim.current_level();
+/// ```
+///
+/// `Send` but not `Sync`: the C contract lets a simulation move between threads, but calls
+/// on it must not overlap (every call, `&self` getters included, rewrites its last-error
+/// message), and progress callbacks run on the calling thread. The borrowed hierarchy is
+/// only read, which the contract allows from simulations on several threads at once; the
+/// simulation never hands out a `&Hierarchy` it borrows, so sending it cannot make two
+/// threads call the hierarchy.
+///
+/// ```compile_fail,E0277
+/// fn shared_between_threads<T: Sync>() {}
+/// shared_between_threads::<progsim::Simulation<'static>>();
+/// ```
+pub struct Simulation<'h> {
+    raw: NonNull<sys::ps_sim>,
+    /// The hierarchy of a scene simulation, owned by the C simulation: never dropped here.
+    owned_hierarchy: Option<ManuallyDrop<Hierarchy>>,
+    _hierarchy: PhantomData<&'h Hierarchy>,
+}
+
+// SAFETY: the C library allows a simulation to move between threads; `!Sync` keeps calls
+// from overlapping; the borrowed hierarchy is only read by the C simulation, which the
+// contract allows concurrently with calls on the hierarchy from its own thread.
+unsafe impl Send for Simulation<'_> {}
+
+impl<'h> Simulation<'h> {
+    /// Creates a simulation of `hierarchy` as described by `def`, at level 0 and at rest.
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] for a parameter out of range (naming it);
+    /// [`Status::InvalidScene`] for a pinned vertex out of range (naming it).
+    pub fn new(hierarchy: &'h Hierarchy, def: &SimulationDef) -> Result<Simulation<'h>> {
+        let raw_def = def.to_raw();
+        let mut out = ptr::null_mut();
+        // SAFETY: live hierarchy; raw_def borrows def.pinned_vertices, alive for the call.
+        let status = unsafe { sys::ps_sim_create(hierarchy.handle()?, &raw_def, &mut out) };
+        check_thread(status)?;
+        Simulation::from_created(out, None)
+    }
+
+    /// Takes ownership of a freshly created simulation.
+    fn from_created(
+        raw: *mut sys::ps_sim,
+        owned_hierarchy: Option<ManuallyDrop<Hierarchy>>,
+    ) -> Result<Simulation<'h>> {
+        let raw = NonNull::new(raw).ok_or_else(|| {
+            Error::new(Status::Internal, "the library returned a NULL simulation")
+        })?;
+        Ok(Simulation { raw, owned_hierarchy, _hierarchy: PhantomData })
+    }
+
+    /// The C handle for a call, or [`Status::WrongCallOrder`] inside a progress closure.
+    fn handle(&self) -> Result<*mut sys::ps_sim> {
+        not_in_callback()?;
+        Ok(self.raw.as_ptr())
+    }
+
+    /// Ok, or the error of the last failed call on this simulation.
+    fn check(&self, status: i32) -> Result<()> {
+        // SAFETY: self.raw is a live simulation; the message is copied at once.
+        check(status, || unsafe { sys::ps_sim_last_error(self.raw.as_ptr()) })
+    }
+
+    /// The hierarchy of a scene simulation (created with [`from_scene`](Self::from_scene) or
+    /// [`from_scene_file`](Self::from_scene_file)), borrowed from the simulation. `None` for
+    /// a simulation from [`new`](Self::new): use the `&Hierarchy` you created it with.
+    pub fn hierarchy(&self) -> Option<&Hierarchy> {
+        self.owned_hierarchy.as_deref()
+    }
+
+    /// Sets a numeric parameter between steps, by name: any parameter-table name
+    /// (`"material.youngs_modulus"` Pa, `"material.thickness"` m, `"simulation.time_step"`
+    /// s, `"solver.newton_tolerance"`, …; `progsim params` lists them with units and
+    /// ranges) or `"gravity.x"`, `"gravity.y"`, `"gravity.z"` (m/s²), `"pressure"` (Pa, all
+    /// bodies).
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] for an unknown name (the message lists the known ones) or
+    /// a value out of range (NaN included); the simulation is then unchanged.
+    pub fn set_param(&mut self, name: &str, value: f64) -> Result<()> {
+        let raw = self.handle()?;
+        let name = c_string(name, "parameter name")?;
+        // SAFETY: live simulation, NUL-terminated name.
+        let status = unsafe { sys::ps_sim_set_param(raw, name.as_ptr(), value) };
+        self.check(status)
+    }
+
+    /// Reads a parameter by name (names and units as in [`set_param`](Self::set_param)).
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] for an unknown name.
+    pub fn param(&self, name: &str) -> Result<f64> {
+        let raw = self.handle()?;
+        let name = c_string(name, "parameter name")?;
+        let mut value = 0.0;
+        // SAFETY: live simulation, NUL-terminated name, valid out-pointer.
+        let status = unsafe { sys::ps_sim_get_param(raw, name.as_ptr(), &mut value) };
+        self.check(status)?;
+        Ok(value)
+    }
+
+    /// Enables or disables one effect between steps.
+    ///
+    /// # Errors
+    /// Only if the library rejects the effect set (not expected for known effects).
+    pub fn set_effect(&mut self, effect: Effect, enabled: bool) -> Result<()> {
+        let raw = self.handle()?;
+        // SAFETY: live simulation.
+        let status = unsafe { sys::ps_sim_set_effect(raw, effect.bit(), i32::from(enabled)) };
+        self.check(status)
+    }
+
+    /// The enabled effects.
+    ///
+    /// # Panics
+    /// Inside a progress closure (the C library forbids calls from callbacks).
+    pub fn effects(&self) -> Effects {
+        let raw = self.handle().unwrap_or_else(|error| panic!("{error}"));
+        let mut bits = 0;
+        // SAFETY: live simulation, valid out-pointer.
+        let status = unsafe { sys::ps_sim_get_effects(raw, &mut bits) };
+        self.check(status).expect("ps_sim_get_effects fails only on NULL arguments");
+        Effects::from_bits_retain(bits)
+    }
+
+    /// The number of handles (scripted vertex groups): 1 for a [`SimulationDef`] with pinned
+    /// vertices (handle 0), else 0; a scene's `handles` array otherwise.
+    ///
+    /// # Panics
+    /// Inside a progress closure (the C library forbids calls from callbacks).
+    pub fn num_handles(&self) -> usize {
+        let raw = self.handle().unwrap_or_else(|error| panic!("{error}"));
+        let mut handles = 0;
+        // SAFETY: live simulation, valid out-pointer.
+        let status = unsafe { sys::ps_sim_num_handles(raw, &mut handles) };
+        self.check(status).expect("ps_sim_num_handles fails only on NULL arguments");
+        count_from(handles)
+    }
+
+    /// Scripts handle `handle` (0 ≤ handle < [`num_handles`](Self::num_handles)) from the
+    /// next step on; see [`HandleMotion`].
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the handle does not exist; [`Status::InvalidArgument`] for a
+    /// zero or non-finite axis.
+    pub fn set_handle_motion(&mut self, handle: usize, motion: &HandleMotion) -> Result<()> {
+        let raw = self.handle()?;
+        let handle = i32::try_from(handle).map_err(|_| {
+            Error::new(Status::OutOfRange, format!("handle {handle} does not exist"))
+        })?;
+        // SAFETY: live simulation; each vector points to 3 doubles alive for the call.
+        let status = unsafe {
+            sys::ps_sim_set_handle_motion(
+                raw,
+                handle,
+                motion.velocity.as_ptr(),
+                motion.axis.as_ptr(),
+                motion.center.as_ptr(),
+                motion.angular_velocity,
+                motion.offset.as_ptr(),
+            )
+        };
+        self.check(status)
+    }
+
+    /// Advances `steps` steps of [`param("simulation.time_step")`](Self::param) seconds at
+    /// the current level. Newton trouble does not fail the call: see
+    /// [`level_stats`](Self::level_stats).
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] for `steps` = 0 (or above `i32::MAX`);
+    /// [`Status::Numerical`] if a step produced non-finite positions.
+    pub fn step_preview(&mut self, steps: u32) -> Result<()> {
+        let raw = self.handle()?;
+        let steps = c_steps(steps)?;
+        // SAFETY: live simulation.
+        let status = unsafe { sys::ps_sim_step_preview(raw, steps) };
+        self.check(status)
+    }
+
+    /// As [`step_preview`](Self::step_preview), calling `progress(done, total, phase)` after
+    /// each step (`phase` is `"preview"`). Return `true` from `progress` to cancel: the call
+    /// then stops after that step and returns [`Status::Cancelled`], the simulation keeping
+    /// the state of the last completed step. (Cancelling after the last step changes
+    /// nothing: the call has finished.)
+    ///
+    /// If `progress` panics, the C call is cancelled at once, and the panic resumes once the
+    /// C call has returned: it never unwinds through C. The simulation stays usable.
+    ///
+    /// `progress` must not call progsim (the C library forbids calls from callbacks): such
+    /// calls fail with [`Status::WrongCallOrder`], and the getters that return plain values
+    /// panic, which cancels as above.
+    ///
+    /// # Errors
+    /// As `step_preview`, and [`Status::Cancelled`].
+    pub fn step_preview_with_progress<F>(&mut self, steps: u32, progress: F) -> Result<()>
+    where
+        F: FnMut(u32, u32, &str) -> bool,
+    {
+        let steps = c_steps(steps)?;
+        // SAFETY: live simulation.
+        self.with_progress(progress, |sim| unsafe { sys::ps_sim_step_preview(sim, steps) })
+    }
+
+    /// Refines the current level l to l + 1 (safe refinement), so that later steps run on the
+    /// finer level.
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] at the finest level, the state unchanged. Hierarchies have a
+    /// single level in this library version, so this is what it returns for now.
+    pub fn refine(&mut self) -> Result<()> {
+        let raw = self.handle()?;
+        // SAFETY: live simulation.
+        let status = unsafe { sys::ps_sim_refine(raw) };
+        self.check(status)
+    }
+
+    /// As [`refine`](Self::refine), reporting progress as
+    /// [`step_preview_with_progress`](Self::step_preview_with_progress) does (phases
+    /// `"refine"`, `"solve"`).
+    ///
+    /// # Errors
+    /// As `refine`, and [`Status::Cancelled`].
+    pub fn refine_with_progress<F>(&mut self, progress: F) -> Result<()>
+    where
+        F: FnMut(u32, u32, &str) -> bool,
+    {
+        // SAFETY: live simulation.
+        self.with_progress(progress, |sim| unsafe { sys::ps_sim_refine(sim) })
+    }
+
+    /// Installs `progress` as the C progress callback for the duration of `call`, then
+    /// removes it. A panic in `progress` cancels the call and is resumed afterwards.
+    fn with_progress<F>(
+        &mut self,
+        progress: F,
+        call: impl FnOnce(*mut sys::ps_sim) -> i32,
+    ) -> Result<()>
+    where
+        F: FnMut(u32, u32, &str) -> bool,
+    {
+        let mut state = ProgressState { callback: progress, panic: None };
+        let sim = self.handle()?;
+        // SAFETY: `state` outlives the call below, after which the callback is removed; the
+        // trampoline matches ps_progress_fn and never unwinds.
+        let installed = unsafe {
+            sys::ps_sim_set_progress_callback(
+                sim,
+                Some(progress_trampoline::<F>),
+                ptr::addr_of_mut!(state).cast::<c_void>(),
+            )
+        };
+        self.check(installed)?;
+        let status = call(sim);
+        // Copy the message first: the next call on the handle clears it.
+        let result = self.check(status);
+        // SAFETY: removing the callback; `state` is no longer referenced afterwards.
+        let removed = unsafe { sys::ps_sim_set_progress_callback(sim, None, ptr::null_mut()) };
+        if let Some(payload) = state.panic.take() {
+            panic::resume_unwind(payload);
+        }
+        result?;
+        self.check(removed)
+    }
+
+    /// The current level (0 = coarsest).
+    ///
+    /// # Panics
+    /// Inside a progress closure (the C library forbids calls from callbacks).
+    pub fn current_level(&self) -> usize {
+        let raw = self.handle().unwrap_or_else(|error| panic!("{error}"));
+        let mut level = 0;
+        // SAFETY: live simulation, valid out-pointer.
+        let status = unsafe { sys::ps_sim_current_level(raw, &mut level) };
+        self.check(status).expect("ps_sim_current_level fails only on NULL arguments");
+        count_from(level)
+    }
+
+    /// The positions of `level`, one `[x, y, z]` (m) per vertex of that level: the current
+    /// state for the current level, the state when it was refined for a coarser one, the
+    /// current state prolonged to it for a finer one.
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the level does not exist.
+    pub fn positions(&self, level: usize) -> Result<Vec<[f64; 3]>> {
+        let raw = self.handle()?;
+        let level = c_level(level)?;
+        read_triples(|out, capacity, count| {
+            // SAFETY: live simulation; out is NULL or valid for `capacity` doubles.
+            let status = unsafe { sys::ps_sim_get_positions(raw, level, out, capacity, count) };
+            self.check(status)
+        })
+    }
+
+    /// Writes `level`'s current mesh ([`positions`](Self::positions) and the level's faces)
+    /// to `path`; the extension picks the format (`.obj`, `.off`, `.ply`).
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the level does not exist; [`Status::Io`] naming the path if
+    /// it cannot be written.
+    pub fn write_mesh(&self, level: usize, path: impl AsRef<Path>) -> Result<()> {
+        let raw = self.handle()?;
+        let level = c_level(level)?;
+        let path = c_path(path.as_ref())?;
+        // SAFETY: live simulation, NUL-terminated path.
+        let status = unsafe { sys::ps_sim_write_mesh(raw, level, path.as_ptr()) };
+        self.check(status)
+    }
+
+    /// The statistics of `level`, accumulated over every step taken at it.
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the level does not exist.
+    pub fn level_stats(&self, level: usize) -> Result<LevelStats> {
+        let raw = self.handle()?;
+        let level = c_level(level)?;
+        let mut stats = MaybeUninit::<sys::ps_level_stats>::uninit();
+        // SAFETY: live simulation; on PS_OK the library wrote the whole struct.
+        let status = unsafe { sys::ps_sim_get_level_stats(raw, level, stats.as_mut_ptr()) };
+        self.check(status)?;
+        // SAFETY: PS_OK, so the struct is filled.
+        Ok(LevelStats::from(unsafe { stats.assume_init() }))
+    }
+
+    /// The C handle, for calls through `progsim-sys`. Borrowed: valid while `self` is; do
+    /// not destroy it, and do not install a progress callback through it.
+    pub fn as_ptr(&self) -> *const sys::ps_sim {
+        self.raw.as_ptr()
+    }
+}
+
+impl Simulation<'static> {
+    /// Creates a simulation from a JSON scene (format: `scenes/README.md`; `//` comments
+    /// allowed). Its bodies' meshes form the hierarchy, which the simulation owns (see
+    /// [`hierarchy`](Self::hierarchy)). Relative mesh paths start from `base_dir` (`None`:
+    /// the current directory).
+    ///
+    /// # Errors
+    /// [`Status::InvalidScene`] with the JSON path of the problem (unknown key such as a
+    /// typo, missing field, value out of range, malformed JSON); [`Status::InvalidMesh`];
+    /// [`Status::Io`] for an unreadable mesh file.
+    pub fn from_scene(json: &str, base_dir: Option<&Path>) -> Result<Simulation<'static>> {
+        check_version()?;
+        let json = c_string(json, "scene JSON")?;
+        let base_dir = base_dir.map(c_path).transpose()?;
+        let mut out = ptr::null_mut();
+        // SAFETY: NUL-terminated strings (base_dir nullable) alive for the call.
+        let status = unsafe {
+            sys::ps_sim_create_from_scene(
+                json.as_ptr(),
+                base_dir.as_ref().map_or(ptr::null(), |dir| dir.as_ptr()),
+                &mut out,
+            )
+        };
+        check_thread(status)?;
+        Simulation::with_own_hierarchy(out)
+    }
+
+    /// As [`from_scene`](Self::from_scene), reading the scene from the file at `path`;
+    /// relative mesh paths start from the file's directory.
+    ///
+    /// # Errors
+    /// As `from_scene`, and [`Status::Io`] if the file cannot be read.
+    pub fn from_scene_file(path: impl AsRef<Path>) -> Result<Simulation<'static>> {
+        check_version()?;
+        let path = c_path(path.as_ref())?;
+        let mut out = ptr::null_mut();
+        // SAFETY: NUL-terminated path alive for the call.
+        let status = unsafe { sys::ps_sim_create_from_scene_file(path.as_ptr(), &mut out) };
+        check_thread(status)?;
+        Simulation::with_own_hierarchy(out)
+    }
+
+    /// Takes ownership of a fresh scene simulation and wraps the hierarchy it owns.
+    fn with_own_hierarchy(raw: *mut sys::ps_sim) -> Result<Simulation<'static>> {
+        let mut sim = Simulation::from_created(raw, None)?;
+        let mut hierarchy = ptr::null();
+        // SAFETY: live simulation, valid out-pointer.
+        let status = unsafe { sys::ps_sim_hierarchy(sim.raw.as_ptr(), &mut hierarchy) };
+        sim.check(status)?;
+        let hierarchy = NonNull::new(hierarchy.cast_mut()).ok_or_else(|| {
+            Error::new(Status::Internal, "the scene simulation has a NULL hierarchy")
+        })?;
+        // The C simulation owns and destroys it; only const calls reach it through Hierarchy.
+        sim.owned_hierarchy = Some(ManuallyDrop::new(Hierarchy::borrowed_from(hierarchy)));
+        Ok(sim)
+    }
+}
+
+impl Drop for Simulation<'_> {
+    fn drop(&mut self) {
+        // SAFETY: owned handle, destroyed once; it destroys a scene's hierarchy with it.
+        unsafe { sys::ps_sim_destroy(self.raw.as_ptr()) }
+    }
+}
+
+impl fmt::Debug for Simulation<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Simulation")
+            .field("raw", &self.raw)
+            .field("owns_hierarchy", &self.owned_hierarchy.is_some())
+            .finish()
+    }
+}
+
+/// A step count as the C `int32_t`.
+fn c_steps(steps: u32) -> Result<i32> {
+    i32::try_from(steps).map_err(|_| {
+        Error::new(Status::InvalidArgument, format!("steps = {steps} exceeds i32::MAX"))
+    })
+}
+
+/// What the progress trampoline reaches through `user_data`.
+struct ProgressState<F> {
+    callback: F,
+    /// The payload of a panic in `callback`, resumed after the C call returns.
+    panic: Option<Box<dyn Any + Send + 'static>>,
+}
+
+/// The `ps_progress_fn` calling a Rust closure. Never unwinds into C: a panic is caught,
+/// stored and answered with "cancel".
+unsafe extern "C" fn progress_trampoline<F>(
+    user_data: *mut c_void,
+    done: i32,
+    total: i32,
+    phase: *const c_char,
+) -> i32
+where
+    F: FnMut(u32, u32, &str) -> bool,
+{
+    // SAFETY: user_data is the ProgressState<F> installed by with_progress, alive and not
+    // otherwise accessed during the C call that invokes us (on the same thread).
+    let state = unsafe { &mut *user_data.cast::<ProgressState<F>>() };
+    if state.panic.is_some() {
+        return 1;
+    }
+    let outcome = panic::catch_unwind(AssertUnwindSafe(|| {
+        let _scope = CallbackScope::enter();
+        let phase = if phase.is_null() {
+            Default::default()
+        } else {
+            // SAFETY: the library passes a NUL-terminated static phase name.
+            unsafe { CStr::from_ptr(phase) }.to_string_lossy()
+        };
+        (state.callback)(count_u32(done), count_u32(total), &phase)
+    }));
+    match outcome {
+        Ok(cancel) => i32::from(cancel),
+        Err(payload) => {
+            state.panic = Some(payload);
+            1
+        }
+    }
+}
+
+/// A C work-unit count as u32 (negative values, which the C side never gives, read as 0).
+fn count_u32(value: i32) -> u32 {
+    u32::try_from(value).unwrap_or(0)
+}

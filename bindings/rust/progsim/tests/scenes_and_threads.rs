@@ -1,0 +1,117 @@
+//! Scene simulations (which own their hierarchy) and moving simulations between threads.
+
+mod common;
+
+use std::thread;
+
+use common::{repo_path, square_cloth, TOP_CORNERS};
+use progsim::{Hierarchy, Simulation, SimulationDef};
+
+#[test]
+fn scene_file_simulation_owns_its_hierarchy() {
+    let mut sim = Simulation::from_scene_file(repo_path("scenes/hanging_cloth.json")).unwrap();
+    let hierarchy = sim.hierarchy().expect("a scene simulation owns its hierarchy");
+    assert_eq!(hierarchy.num_levels(), 1);
+    let (vertices, faces) = hierarchy.level_size(0).unwrap();
+    assert_eq!((vertices, faces), (41 * 41, 2 * 40 * 40));
+    assert_eq!(sim.num_handles(), 2);
+    assert_eq!(sim.param("simulation.time_step"), Ok(0.02));
+    assert_eq!(sim.param("material.density"), Ok(400.0));
+    sim.step_preview(2).unwrap();
+    assert_eq!(sim.positions(0).unwrap().len(), vertices);
+    assert_eq!(sim.level_stats(0).unwrap().steps, 2);
+}
+
+#[test]
+fn scene_text_resolves_mesh_paths_from_base_dir() {
+    let json = r#"
+        // the bundled cloth file, pinned at its top corners
+        {
+          "effects": ["membrane", "gravity"],
+          "gravity": [0, 0, -9.81],
+          "bodies": [{ "name": "cloth", "mesh": { "file": "meshes/square_cloth.obj" } }],
+          "handles": [{ "body": "cloth", "vertices": [420, 440] }]
+        }"#;
+    let base = repo_path("scenes");
+    let mut sim = Simulation::from_scene(json, Some(&base)).unwrap();
+    assert_eq!(sim.hierarchy().unwrap().level_size(0), Ok((441, 800)));
+    sim.step_preview(3).unwrap();
+    let x = sim.positions(0).unwrap();
+    assert!(x.iter().any(|p| p[2] < 0.0));
+    assert_eq!(x[420][2], 0.0);
+    // Without the base folder the relative path does not resolve from here.
+    let error =
+        Simulation::from_scene(json, Some(std::path::Path::new("/nonexistent"))).unwrap_err();
+    assert_eq!(error.code, progsim::Status::Io, "{error}");
+}
+
+/// The z of the lowest vertex after `steps` steps of the hanging cloth on this thread.
+fn lowest_after(sim: &mut Simulation<'_>, steps: u32) -> f64 {
+    sim.step_preview(steps).unwrap();
+    sim.positions(0).unwrap().iter().map(|p| p[2]).fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn scene_simulation_moves_to_another_thread() {
+    let mut sim = Simulation::from_scene_file(repo_path("scenes/hanging_cloth.json")).unwrap();
+    sim.set_param("gravity.y", 0.0).unwrap();
+    sim.set_param("gravity.z", -9.81).unwrap();
+    let creator = thread::current().id();
+    let worker = thread::spawn(move || {
+        assert_ne!(thread::current().id(), creator);
+        let lowest = lowest_after(&mut sim, 5);
+        let calls = {
+            let mut calls = 0;
+            sim.step_preview_with_progress(2, |_, _, _| {
+                calls += 1;
+                false
+            })
+            .unwrap();
+            calls
+        };
+        (sim, lowest, calls)
+    });
+    let (sim, lowest, calls) = worker.join().expect("stepping on the worker thread");
+    assert!(lowest < -0.01, "lowest z = {lowest}");
+    assert_eq!(calls, 2);
+    // And back: the simulation is usable on this thread again.
+    assert_eq!(sim.level_stats(0).unwrap().steps, 7);
+}
+
+#[test]
+fn borrowing_simulations_step_on_several_threads() {
+    let hierarchy = Hierarchy::from_file(square_cloth()).unwrap();
+    let def = SimulationDef {
+        gravity: [0.0, 0.0, -9.81],
+        pinned_vertices: TOP_CORNERS.to_vec(),
+        ..SimulationDef::default()
+    };
+    let mut sims: Vec<Simulation<'_>> =
+        (0..2).map(|_| Simulation::new(&hierarchy, &def).unwrap()).collect();
+    let lowest: Vec<f64> = thread::scope(|scope| {
+        let workers: Vec<_> =
+            sims.iter_mut().map(|sim| scope.spawn(move || lowest_after(sim, 10))).collect();
+        // The hierarchy stays usable on this thread while the simulations read it.
+        assert_eq!(hierarchy.level_size(0), Ok((441, 800)));
+        workers.into_iter().map(|w| w.join().unwrap()).collect()
+    });
+    assert!(lowest[0] < -0.03, "{lowest:?}");
+    assert_eq!(lowest[0], lowest[1], "same inputs, same result on any thread");
+    drop(sims);
+    drop(hierarchy);
+}
+
+#[test]
+fn hierarchy_moves_to_another_thread() {
+    let hierarchy = Hierarchy::from_file(square_cloth()).unwrap();
+    let levels = thread::spawn(move || {
+        let def =
+            SimulationDef { pinned_vertices: TOP_CORNERS.to_vec(), ..SimulationDef::default() };
+        let mut sim = Simulation::new(&hierarchy, &def).unwrap();
+        sim.step_preview(1).unwrap();
+        hierarchy.num_levels()
+    })
+    .join()
+    .unwrap();
+    assert_eq!(levels, 1);
+}
