@@ -257,7 +257,8 @@ PS_API int32_t ps_sim_hierarchy(const ps_sim* sim, const ps_hierarchy** out);
  * phase ("preview" for ps_sim_step_preview(); refinement will report "refine"). Return 0 to
  * continue, non-zero to cancel: the call then returns PS_ERROR_CANCELLED (also when the
  * last unit was done), keeping the state of the last completed step. The callback must not
- * call the simulation that is running; other handles and the handle-free calls are fine.
+ * call the simulation that is running (such calls return PS_ERROR_WRONG_CALL_ORDER); other
+ * handles and the handle-free calls are fine.
  */
 typedef int32_t (*ps_progress_fn)(void* user_data, int32_t done, int32_t total, const char* phase);
 

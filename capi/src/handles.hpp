@@ -32,12 +32,34 @@ struct ps_sim {
   progsim::Scene scene;  ///< the scene as last set (parameters are edited here, then applied)
   int level = 0;
   std::vector<LevelRecord> records;
+  bool busy = false;  ///< inside a long call (its progress callback may not call back)
   ps_progress_fn progress = nullptr;
   void* progress_user_data = nullptr;
   mutable std::string last_error;
 };
 
 namespace progsim::capi {
+
+/// Checks sim is non-NULL and not inside one of its own long calls (a progress callback
+/// calling back into the simulation that is running: PS_ERROR_WRONG_CALL_ORDER).
+inline void require_idle(const ps_sim* sim) {
+  require(sim, "sim");
+  if (sim->busy)
+    api_fail(PS_ERROR_WRONG_CALL_ORDER,
+             "called from the progress callback of a running call on this simulation");
+}
+
+/// Marks sim busy for the lifetime of this guard.
+class BusyGuard {
+ public:
+  explicit BusyGuard(ps_sim& sim) : sim_(sim) { sim_.busy = true; }
+  ~BusyGuard() { sim_.busy = false; }
+  BusyGuard(const BusyGuard&) = delete;
+  BusyGuard& operator=(const BusyGuard&) = delete;
+
+ private:
+  ps_sim& sim_;
+};
 
 /// Where a call on sim stores its error message: the handle, or the thread for NULL.
 inline std::string* error_slot(const ps_sim* sim) {

@@ -91,7 +91,7 @@ PS_API const char* ps_sim_last_error(const ps_sim* sim) {
 
 PS_API int32_t ps_sim_hierarchy(const ps_sim* sim, const ps_hierarchy** out) {
   return guarded(error_slot(sim), "ps_sim_hierarchy", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     require(out, "out");
     *out = sim->hierarchy;
   });
@@ -99,7 +99,7 @@ PS_API int32_t ps_sim_hierarchy(const ps_sim* sim, const ps_hierarchy** out) {
 
 PS_API int32_t ps_sim_set_progress_callback(ps_sim* sim, ps_progress_fn fn, void* user_data) {
   return guarded(error_slot(sim), "ps_sim_set_progress_callback", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     sim->progress = fn;
     sim->progress_user_data = user_data;
   });
@@ -107,7 +107,7 @@ PS_API int32_t ps_sim_set_progress_callback(ps_sim* sim, ps_progress_fn fn, void
 
 PS_API int32_t ps_sim_set_param(ps_sim* sim, const char* name, double value) {
   return guarded(error_slot(sim), "ps_sim_set_param", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     require(name, "name");
     edit_scene(*sim, [&](Scene& scene) { set_scene_parameter(scene, name, value); });
   });
@@ -115,7 +115,7 @@ PS_API int32_t ps_sim_set_param(ps_sim* sim, const char* name, double value) {
 
 PS_API int32_t ps_sim_get_param(const ps_sim* sim, const char* name, double* out) {
   return guarded(error_slot(sim), "ps_sim_get_param", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     require(name, "name");
     require(out, "out");
     *out = scene_parameter(sim->scene, name);
@@ -124,7 +124,7 @@ PS_API int32_t ps_sim_get_param(const ps_sim* sim, const char* name, double* out
 
 PS_API int32_t ps_sim_set_effect(ps_sim* sim, uint32_t effect, int32_t enabled) {
   return guarded(error_slot(sim), "ps_sim_set_effect", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     if (effect == 0 || (effect & (effect - 1)) != 0)
       api_fail(PS_ERROR_INVALID_ARGUMENT,
                "effect = " + std::to_string(effect) + " is not a single ps_effect bit");
@@ -137,7 +137,7 @@ PS_API int32_t ps_sim_set_effect(ps_sim* sim, uint32_t effect, int32_t enabled) 
 
 PS_API int32_t ps_sim_get_effects(const ps_sim* sim, uint32_t* out) {
   return guarded(error_slot(sim), "ps_sim_get_effects", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     require(out, "out");
     *out = effect_bits(sim->scene.effects);
   });
@@ -145,7 +145,7 @@ PS_API int32_t ps_sim_get_effects(const ps_sim* sim, uint32_t* out) {
 
 PS_API int32_t ps_sim_num_handles(const ps_sim* sim, int32_t* out) {
   return guarded(error_slot(sim), "ps_sim_num_handles", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     require(out, "out");
     *out = static_cast<int32_t>(sim->scene.handles.size());
   });
@@ -155,7 +155,7 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
                                         const double axis[3], const double center[3],
                                         double angular_velocity, const double offset[3]) {
   return guarded(error_slot(sim), "ps_sim_set_handle_motion", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     const auto n = static_cast<int32_t>(sim->scene.handles.size());
     if (handle < 0 || handle >= n)
       api_fail(PS_ERROR_OUT_OF_RANGE, "handle " + std::to_string(handle) +

@@ -36,9 +36,10 @@ extern "C" {
 
 PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps) {
   return guarded(error_slot(sim), "ps_sim_step_preview", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     if (steps < 1)
       api_fail(PS_ERROR_INVALID_ARGUMENT, "steps = " + std::to_string(steps) + " must be >= 1");
+    const BusyGuard busy(*sim);
     for (int32_t s = 0; s < steps; ++s) {
       const StepRecord step = sim->simulation->step();
       record_step(sim->records[sim->level], step, sim->simulation->time());
@@ -55,7 +56,7 @@ PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps) {
 
 PS_API int32_t ps_sim_refine(ps_sim* sim) {
   return guarded(error_slot(sim), "ps_sim_refine", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     const auto finest = static_cast<int32_t>(sim->hierarchy->levels.size()) - 1;
     // Hierarchies have a single level until multi-level ones arrive (PS_ERROR_UNSUPPORTED at
     // creation), so every simulation is at its finest level.
@@ -67,7 +68,7 @@ PS_API int32_t ps_sim_refine(ps_sim* sim) {
 
 PS_API int32_t ps_sim_current_level(const ps_sim* sim, int32_t* out) {
   return guarded(error_slot(sim), "ps_sim_current_level", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     require(out, "out");
     *out = sim->level;
   });
@@ -76,7 +77,7 @@ PS_API int32_t ps_sim_current_level(const ps_sim* sim, int32_t* out) {
 PS_API int32_t ps_sim_get_positions(const ps_sim* sim, int32_t level, double* out, size_t capacity,
                                     size_t* count) {
   return guarded(error_slot(sim), "ps_sim_get_positions", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     const Positions positions = level_positions(*sim, level);
     copy_out(positions.data(), static_cast<size_t>(positions.size()), out, capacity, count);
   });
@@ -84,7 +85,7 @@ PS_API int32_t ps_sim_get_positions(const ps_sim* sim, int32_t level, double* ou
 
 PS_API int32_t ps_sim_write_mesh(const ps_sim* sim, int32_t level, const char* path) {
   return guarded(error_slot(sim), "ps_sim_write_mesh", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     require(path, "path");
     TriangleMesh mesh;
     mesh.vertices = level_positions(*sim, level);
@@ -95,7 +96,7 @@ PS_API int32_t ps_sim_write_mesh(const ps_sim* sim, int32_t level, const char* p
 
 PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level_stats* out) {
   return guarded(error_slot(sim), "ps_sim_get_level_stats", [&] {
-    require(sim, "sim");
+    require_idle(sim);
     require(out, "out");
     level_mesh(*sim->hierarchy, level);  // range check
     const LevelRecord& r = sim->records[level];

@@ -61,6 +61,17 @@ static int32_t cancel_after_two(void* user_data, int32_t done, int32_t total, co
   return done >= 2;
 }
 
+/* A callback that calls back into the running simulation: refused, not crashed. */
+static int32_t call_back_in(void* user_data, int32_t done, int32_t total, const char* phase) {
+  ps_sim* sim = (ps_sim*)user_data;
+  (void)done;
+  (void)total;
+  (void)phase;
+  CHECK_ERROR(ps_sim_step_preview(sim, 1), PS_ERROR_WRONG_CALL_ORDER, ps_sim_last_error(sim),
+              "progress callback");
+  return 0;
+}
+
 static void test_full_cycle(void) {
   ps_hierarchy* h = NULL;
   CHECK(ps_hierarchy_create_from_file(NULL, path_in_source("scenes/meshes/square_cloth.obj"), &h) ==
@@ -112,6 +123,8 @@ static void test_full_cycle(void) {
   CHECK(calls == 2);
   CHECK(ps_sim_get_level_stats(sim, 0, &stats) == PS_OK && stats.steps == 12);
 
+  CHECK(ps_sim_set_progress_callback(sim, call_back_in, sim) == PS_OK);
+  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
   CHECK_ERROR(ps_sim_refine(sim), PS_ERROR_OUT_OF_RANGE, ps_sim_last_error(sim), "finest level 0");
   const double offset[3] = {0.1, 0, 0};
   CHECK(ps_sim_set_handle_motion(sim, 0, NULL, NULL, NULL, 0.0, offset) == PS_OK);
