@@ -92,28 +92,113 @@ void check_off_header_counts(const std::string& path) {
                              " bytes can hold (truncated file or corrupt header)");
 }
 
-/// CGAL's PLY reader dereferences the last element when it meets a "property" line, and
-/// crashes if no "element" line came before: reject such headers first.
-void check_ply_header_order(const std::string& path) {
+/// The non-empty lines of a text file with "#" comments removed.
+std::vector<std::string> content_lines(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  bool seen_element = false;
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    line = line.substr(0, line.find('#'));
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+  }
+  return lines;
+}
+
+/// CGAL's OFF scanner reads face indices as doubles and casts them to size_t, which is
+/// undefined for negative or huge values (found by the fuzz target): check every index of a
+/// text OFF file is a whole number in [0, |V|) first. Line layout: keyword, counts, |V| vertex
+/// lines, then face lines "k i₁ … i_k [colour]". Layouts it does not know are left to CGAL.
+void check_off_face_indices(const std::string& path) {
+  const std::vector<std::string> lines = content_lines(path);
+  if (lines.size() < 2) return;
+  std::istringstream header(lines[0] + " " + lines[1]);
+  std::string keyword;
+  long long nv = 0, nf = 0;
+  header >> keyword;
+  if (keyword.find("OFF") == std::string::npos || keyword[0] == 'n' || !(header >> nv >> nf) ||
+      nv < 0 || nf < 0)
+    return;
+  const std::size_t first_face = 2 + static_cast<std::size_t>(nv);
+  for (std::size_t f = 0; f < static_cast<std::size_t>(nf) && first_face + f < lines.size(); ++f) {
+    std::istringstream words(lines[first_face + f]);
+    std::string token;
+    long long k = 0;
+    if (!(words >> k) || k < 0) return;  // CGAL reports the malformed line
+    for (long long i = 0; i < k && words >> token; ++i) {
+      long long index = -1;
+      const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), index);
+      if (error == std::errc() && end == token.data() + token.size() && index >= 0 && index < nv)
+        continue;
+      fail(Status::invalid_mesh, path + ": face " + std::to_string(f) + " references vertex '" +
+                                     token + "', not an index in [0, " + std::to_string(nv) + ")");
+    }
+  }
+}
+
+/// Rejects a PLY "element NAME COUNT" line whose count is not a whole number the file can
+/// hold: CGAL's reader casts "-1" to 2^64 − 1 items and loops over them for hours (found by
+/// the fuzz target). Each item takes at least one byte.
+void check_ply_element_count(const std::string& path, std::istringstream& words,
+                             std::uintmax_t file_size) {
+  std::string name, count_text;
+  words >> name >> count_text;
+  std::uintmax_t count = 0;
+  const auto [end, error] =
+      std::from_chars(count_text.data(), count_text.data() + count_text.size(), count);
+  if (error == std::errc() && end == count_text.data() + count_text.size() && count <= file_size)
+    return;
+  fail(Status::io_error, path + ": cannot parse the file as PLY (element '" + name + "' declares " +
+                             (count_text.empty() ? "no" : "'" + count_text + "'") +
+                             " items, not a count the file's " + std::to_string(file_size) +
+                             " bytes can hold)");
+}
+
+/// CGAL reads vertex coordinates assuming a float or double property and dereferences a null
+/// pointer for any other type (PLY_reader.h, found by the fuzz target): reject those first.
+void check_ply_coordinate_type(const std::string& path, const std::string& element,
+                               std::istringstream& words) {
+  std::string type, name;
+  words >> type >> name;
+  if (element != "vertex" || (name != "x" && name != "y" && name != "z")) return;
+  if (type == "float" || type == "float32" || type == "double" || type == "float64") return;
+  fail(Status::io_error, path + ": cannot parse the file as PLY (vertex property '" + name +
+                             "' has type '" + type + "'; coordinates must be float or double)");
+}
+
+/// Checks a PLY header before CGAL reads it. CGAL dereferences the last element when it meets
+/// a "property" line, and crashes if no "element" line came before; element counts and
+/// coordinate types are checked by the functions above.
+void check_ply_header(const std::string& path) {
+  std::error_code size_error;
+  const std::uintmax_t file_size = std::filesystem::file_size(path, size_error);
+  if (size_error) return;  // unreadable: the reader reports it
+  std::ifstream in(path, std::ios::binary);
+  std::string element;  // the element whose properties follow; "" before the first
   for (std::string line; std::getline(in, line);) {
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
     if (keyword == "end_header") return;
-    seen_element = seen_element || keyword == "element";
-    if (keyword == "property" && !seen_element)
+    if (keyword == "element") {
+      std::istringstream name_of(line.substr(line.find("element") + 7));
+      name_of >> element;
+      if (element.empty()) element = " ";  // an element without a name still opens a block
+      check_ply_element_count(path, words, file_size);
+    }
+    if (keyword == "property" && element.empty())
       fail(Status::io_error, path +
                                  ": cannot parse the file as PLY (a property comes before "
                                  "any element in the header)");
+    if (keyword == "property") check_ply_coordinate_type(path, element, words);
   }
 }
 
 /// Rejects headers that would make CGAL's readers misbehave instead of failing cleanly.
 void check_header(const std::string& path, Format format) {
-  if (format == Format::off) check_off_header_counts(path);
-  if (format == Format::ply) check_ply_header_order(path);
+  if (format == Format::off) {
+    check_off_header_counts(path);
+    check_off_face_indices(path);
+  }
+  if (format == Format::ply) check_ply_header(path);
 }
 
 /// What a parse failure means, for the message.

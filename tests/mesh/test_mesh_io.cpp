@@ -126,6 +126,12 @@ TEST_F(MeshIo, RejectsBadIndicesAndPolygonsAsInvalidMeshes) {
   // Vertex 9 of 4: CGAL's OBJ reader fails on it; the message still names the face.
   expect_read_error("bad_index_far.obj", Status::invalid_mesh,
                     {"bad_index_far.obj: face 1 references vertex 8"});
+  // CGAL's OFF scanner would cast a bad index to size_t (undefined for negative or huge
+  // values): it is checked before CGAL reads the file.
+  expect_read_error("bad_index.off", Status::invalid_mesh,
+                    {"bad_index.off: face 1 references vertex '7'", "[0, 4)"});
+  expect_read_error("huge_index.off", Status::invalid_mesh,
+                    {"huge_index.off: face 0 references vertex '37777777777777777777777777'"});
   expect_read_error("negative_index.ply", Status::invalid_mesh,
                     {"negative_index.ply: face 1 references vertex -1"});
   expect_read_error("quad_face.obj", Status::invalid_mesh,
@@ -135,9 +141,12 @@ TEST_F(MeshIo, RejectsBadIndicesAndPolygonsAsInvalidMeshes) {
 TEST_F(MeshIo, RejectsUnparsableFilesAsIoErrors) {
   expect_read_error("garbage.off", Status::io_error, {"garbage.off: cannot parse"});
   expect_read_error("truncated.ply", Status::io_error, {"truncated.ply: cannot parse"});
-  // CGAL's OFF reader treats an out-of-range index as a parse error.
-  expect_read_error("bad_index.off", Status::io_error,
-                    {"bad_index.off: cannot parse", "face index out of range"});
+  // Found by the fuzz target: CGAL dereferences null for integer vertex coordinates.
+  expect_read_error("integer_coordinate.ply", Status::io_error,
+                    {"integer_coordinate.ply: cannot parse", "'y' has type 'uint32'"});
+  // Found by the fuzz target: "element verertex -1." made CGAL loop over 2^64 − 1 items.
+  expect_read_error("negative_element_count.ply", Status::io_error,
+                    {"negative_element_count.ply: cannot parse", "element 'verertex'", "'-1.'"});
 }
 
 TEST_F(MeshIo, LeavesGeometryAndManifoldnessToValidation) {
