@@ -143,9 +143,10 @@ PS_API int32_t ps_hierarchy_create(const ps_hierarchy_def* def, const double* ve
 PS_API int32_t ps_hierarchy_create_from_file(const ps_hierarchy_def* def, const char* path,
                                              ps_hierarchy** out);
 
-/** Destroys a hierarchy. Nullable (no-op). Simulations created on it must be destroyed
- *  first. */
-PS_API void ps_hierarchy_destroy(ps_hierarchy* hierarchy);
+/** Destroys a hierarchy. Nullable (no-op, PS_OK). While simulations created on it with
+ *  ps_sim_create() exist, the hierarchy is kept and the call returns
+ *  PS_ERROR_WRONG_CALL_ORDER (message in ps_last_error()): destroy them first. */
+PS_API int32_t ps_hierarchy_destroy(ps_hierarchy* hierarchy);
 
 /** Message of the last failed call on this hierarchy ("" if none). Borrowed until the next
  *  call on it. A NULL hierarchy gives ps_last_error(). */
@@ -277,6 +278,33 @@ PS_API int32_t ps_sim_set_param(ps_sim* sim, const char* name, double value);
 
 /** Reads a parameter by name (names as in ps_sim_set_param()) into *out. */
 PS_API int32_t ps_sim_get_param(const ps_sim* sim, const char* name, double* out);
+
+/** Description of one parameter ps_sim_set_param() accepts. Strings are static. */
+typedef struct ps_param_info {
+  const char* name;     /**< e.g. "material.thickness" */
+  const char* unit;     /**< SI unit, e.g. "m", "Pa", "1" */
+  const char* doc;      /**< one-sentence description */
+  double default_value; /**< the value ps_sim_def_init() sets */
+  double min;           /**< admissible range [min, max] or (min, max), see below */
+  double max;
+  int32_t min_inclusive; /**< 1 if min itself is admissible */
+  int32_t max_inclusive; /**< 1 if max itself is admissible */
+  int32_t integer;       /**< 1 if only whole numbers are admissible */
+} ps_param_info;
+
+/** Number of parameters ps_sim_set_param() accepts. Thread-safe. */
+PS_API int32_t ps_param_count(void);
+
+/** Description of parameter `index` in [0, ps_param_count()) into *out. Thread-safe.
+ *  Errors: PS_ERROR_OUT_OF_RANGE, PS_ERROR_NULL_ARGUMENT (messages in ps_last_error()). */
+PS_API int32_t ps_param_info_get(int32_t index, ps_param_info* out);
+
+/** Switches between dynamic and quasistatic stepping (a ps_mode) between steps; velocities
+ *  are zeroed when switching to quasistatic. Errors: PS_ERROR_INVALID_ARGUMENT. */
+PS_API int32_t ps_sim_set_mode(ps_sim* sim, int32_t mode);
+
+/** The stepping mode (a ps_mode) into *out. */
+PS_API int32_t ps_sim_get_mode(const ps_sim* sim, int32_t* out);
 
 /** Enables or disables one effect (a ps_effect bit) between steps. */
 PS_API int32_t ps_sim_set_effect(ps_sim* sim, uint32_t effect, int32_t enabled);

@@ -1,6 +1,7 @@
 #pragma once
 /// @file What the C ABI's opaque handles hold.
 #include <algorithm>
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 /// A mesh hierarchy; levels[0] is the coarsest, levels.back() the user's mesh.
 struct ps_hierarchy {
   std::vector<progsim::TriangleMesh> levels;
+  mutable std::atomic<int> simulations{0};  ///< live simulations created on it
   mutable std::string last_error;
 };
 
@@ -35,7 +37,15 @@ struct ps_sim {
   bool busy = false;  ///< inside a long call (its progress callback may not call back)
   ps_progress_fn progress = nullptr;
   void* progress_user_data = nullptr;
+  bool counts_as_user = false;  ///< counted in hierarchy->simulations
   mutable std::string last_error;
+
+  ps_sim() = default;
+  ps_sim(const ps_sim&) = delete;
+  ps_sim& operator=(const ps_sim&) = delete;
+  ~ps_sim() {
+    if (counts_as_user) --hierarchy->simulations;
+  }
 };
 
 namespace progsim::capi {

@@ -93,8 +93,15 @@ PS_API int32_t ps_hierarchy_create_from_file(const ps_hierarchy_def* def, const 
   });
 }
 
-PS_API void ps_hierarchy_destroy(ps_hierarchy* hierarchy) {
-  delete hierarchy;
+PS_API int32_t ps_hierarchy_destroy(ps_hierarchy* hierarchy) {
+  return guarded(nullptr, "ps_hierarchy_destroy", [&] {
+    if (!hierarchy) return;
+    if (const int users = hierarchy->simulations.load(); users > 0)
+      api_fail(PS_ERROR_WRONG_CALL_ORDER, std::to_string(users) +
+                                              " simulation(s) still use this hierarchy; destroy "
+                                              "them first");
+    delete hierarchy;
+  });
 }
 
 PS_API const char* ps_hierarchy_last_error(const ps_hierarchy* hierarchy) {

@@ -16,6 +16,8 @@ std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
   sim->scene = scene;
   sim->simulation = std::make_unique<DirectSimulation>(std::move(scene));
   sim->records.resize(hierarchy->levels.size());
+  ++hierarchy->simulations;  // last: nothing below can throw
+  sim->counts_as_user = true;
   return sim;
 }
 
@@ -119,6 +121,25 @@ PS_API int32_t ps_sim_get_param(const ps_sim* sim, const char* name, double* out
     require(name, "name");
     require(out, "out");
     *out = scene_parameter(sim->scene, name);
+  });
+}
+
+PS_API int32_t ps_sim_set_mode(ps_sim* sim, int32_t mode) {
+  return guarded(error_slot(sim), "ps_sim_set_mode", [&] {
+    require_idle(sim);
+    if (mode != PS_MODE_DYNAMIC && mode != PS_MODE_QUASISTATIC)
+      api_fail(PS_ERROR_INVALID_ARGUMENT, "mode = " + std::to_string(mode) + " is not a ps_mode");
+    edit_scene(*sim, [&](Scene& scene) {
+      scene.mode = mode == PS_MODE_DYNAMIC ? StepMode::dynamic : StepMode::quasistatic;
+    });
+  });
+}
+
+PS_API int32_t ps_sim_get_mode(const ps_sim* sim, int32_t* out) {
+  return guarded(error_slot(sim), "ps_sim_get_mode", [&] {
+    require_idle(sim);
+    require(out, "out");
+    *out = sim->scene.mode == StepMode::dynamic ? PS_MODE_DYNAMIC : PS_MODE_QUASISTATIC;
   });
 }
 

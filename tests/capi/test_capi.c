@@ -231,6 +231,42 @@ static void test_misuse(void) {
   CHECK(sim == NULL);
 }
 
+static void test_parameter_listing_mode_and_lifetimes(void) {
+  const int32_t n = ps_param_count();
+  CHECK(n >= 13);
+  int found = 0;
+  for (int32_t i = 0; i < n; ++i) {
+    ps_param_info info;
+    CHECK(ps_param_info_get(i, &info) == PS_OK);
+    if (strcmp(info.name, "material.thickness") == 0)
+      found = strcmp(info.unit, "m") == 0 && info.default_value == 1e-3 && info.min == 0.0 &&
+              !info.min_inclusive;
+  }
+  CHECK(found);
+  ps_param_info info;
+  CHECK_ERROR(ps_param_info_get(n, &info), PS_ERROR_OUT_OF_RANGE, ps_last_error(),
+              "does not exist");
+
+  ps_hierarchy* h = NULL;
+  ps_sim* sim = NULL;
+  CHECK(ps_hierarchy_create(NULL, kGridVertices, 9, kGridFaces, 8, &h) == PS_OK);
+  CHECK(ps_sim_create(h, NULL, &sim) == PS_OK);
+  if (!h || !sim) return;
+  int32_t mode = -1;
+  CHECK(ps_sim_get_mode(sim, &mode) == PS_OK && mode == PS_MODE_DYNAMIC);
+  CHECK(ps_sim_set_mode(sim, PS_MODE_QUASISTATIC) == PS_OK);
+  CHECK(ps_sim_get_mode(sim, &mode) == PS_OK && mode == PS_MODE_QUASISTATIC);
+  CHECK_ERROR(ps_sim_set_mode(sim, 7), PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),
+              "not a ps_mode");
+  /* The hierarchy outlives its simulations: destroying it first is refused, not UB. */
+  CHECK_ERROR(ps_hierarchy_destroy(h), PS_ERROR_WRONG_CALL_ORDER, ps_last_error(),
+              "1 simulation(s) still use this hierarchy");
+  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
+  ps_sim_destroy(sim);
+  CHECK(ps_hierarchy_destroy(h) == PS_OK);
+  CHECK(ps_hierarchy_destroy(NULL) == PS_OK);
+}
+
 static void test_scene_file(void) {
   ps_sim* sim = NULL;
   CHECK(ps_sim_create_from_scene_file(path_in_source("scenes/hanging_cloth.json"), &sim) == PS_OK);
@@ -254,6 +290,7 @@ int main(int argc, char** argv) {
   test_version();
   test_full_cycle();
   test_misuse();
+  test_parameter_listing_mode_and_lifetimes();
   test_scene_file();
   if (failures)
     fprintf(stderr, "%d checks failed\n", failures);

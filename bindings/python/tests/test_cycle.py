@@ -104,6 +104,12 @@ def test_effects_and_modes(small):
         assert sim.effects == {"membrane", "pressure"}
         with pytest.raises(progsim.InvalidArgumentError, match="unknown effect 'gravty'"):
             sim.set_effect("gravty")
+        assert sim.mode == "quasistatic"
+        sim.mode = "dynamic"
+        assert sim.mode == "dynamic"
+        with pytest.raises(progsim.InvalidArgumentError, match="unknown mode"):
+            sim.mode = "static"
+        assert sim.mode == "dynamic"
     with pytest.raises(progsim.InvalidArgumentError, match="unknown mode"):
         progsim.Simulation(small, mode="static")
 

@@ -387,6 +387,20 @@ class Simulation(NativeObject):
                 self.set_param(f"gravity.{axis}", component)
             raise
 
+    @property
+    def mode(self) -> str:
+        """The stepping mode, ``"dynamic"`` or ``"quasistatic"``; assignable between steps
+        (switching to quasistatic zeroes the velocities)."""
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_get_mode, out)
+        return next(name for name, value in MODES.items() if value == out[0])
+
+    @mode.setter
+    def mode(self, name: str) -> None:
+        if name not in MODES:
+            raise InvalidArgumentError(f"unknown mode {name!r}; the modes are {', '.join(MODES)}")
+        self._call(lib.ps_sim_set_mode, MODES[name])
+
     def set_effect(self, name: str, enabled: bool = True) -> None:
         """Enables or disables one effect (``membrane``, ``bending``, ``gravity``,
         ``pressure``) between steps."""

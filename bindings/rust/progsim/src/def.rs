@@ -47,14 +47,14 @@ pub enum Mode {
 }
 
 impl Mode {
-    fn to_raw(self) -> sys::ps_mode {
+    pub(crate) fn to_raw(self) -> sys::ps_mode {
         match self {
             Mode::Dynamic => sys::PS_MODE_DYNAMIC,
             Mode::Quasistatic => sys::PS_MODE_QUASISTATIC,
         }
     }
 
-    fn from_raw(raw: sys::ps_mode) -> Option<Mode> {
+    pub(crate) fn from_raw(raw: sys::ps_mode) -> Option<Mode> {
         match raw {
             sys::PS_MODE_DYNAMIC => Some(Mode::Dynamic),
             sys::PS_MODE_QUASISTATIC => Some(Mode::Quasistatic),

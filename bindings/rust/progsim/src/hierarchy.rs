@@ -202,7 +202,9 @@ impl Hierarchy {
 impl Drop for Hierarchy {
     fn drop(&mut self) {
         // SAFETY: owned handle; no simulation borrows it any more (lifetimes ensure it).
-        unsafe { sys::ps_hierarchy_destroy(self.raw.as_ptr()) }
+        unsafe {
+            sys::ps_hierarchy_destroy(self.raw.as_ptr());
+        }
     }
 }
 

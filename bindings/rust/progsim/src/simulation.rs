@@ -14,7 +14,7 @@ use progsim_sys as sys;
 use crate::error::{check, check_thread};
 use crate::{
     c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
-    CallbackScope, Effect, Effects, Error, HandleMotion, Hierarchy, LevelStats, Result,
+    CallbackScope, Effect, Effects, Error, HandleMotion, Hierarchy, LevelStats, Mode, Result,
     SimulationDef, Status,
 };
 
@@ -144,6 +144,31 @@ impl<'h> Simulation<'h> {
         // SAFETY: live simulation.
         let status = unsafe { sys::ps_sim_set_effect(raw, effect.bit(), i32::from(enabled)) };
         self.check(status)
+    }
+
+    /// Switches between dynamic and quasistatic stepping between steps (switching to
+    /// quasistatic zeroes the velocities).
+    ///
+    /// # Errors
+    /// Inside a progress closure ([`Status::WrongCallOrder`]).
+    pub fn set_mode(&mut self, mode: Mode) -> Result<()> {
+        let raw = self.handle()?;
+        // SAFETY: live simulation.
+        let status = unsafe { sys::ps_sim_set_mode(raw, mode.to_raw() as i32) };
+        self.check(status)
+    }
+
+    /// The stepping mode.
+    ///
+    /// # Panics
+    /// Inside a progress closure (the C library forbids calls from callbacks).
+    pub fn mode(&self) -> Mode {
+        let raw = self.handle().unwrap_or_else(|error| panic!("{error}"));
+        let mut mode = 0;
+        // SAFETY: live simulation, valid out-pointer.
+        let status = unsafe { sys::ps_sim_get_mode(raw, &mut mode) };
+        self.check(status).expect("ps_sim_get_mode fails only on NULL arguments");
+        Mode::from_raw(mode as sys::ps_mode).expect("the library returns a known mode")
     }
 
     /// The enabled effects.

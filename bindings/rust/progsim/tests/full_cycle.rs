@@ -123,9 +123,13 @@ fn quasistatic_default_gravity_sags_in_y() {
         ..SimulationDef::default()
     };
     let mut sim = Simulation::new(&hierarchy, &def).unwrap();
+    assert_eq!(sim.mode(), progsim::Mode::Quasistatic);
     sim.step_preview(1).unwrap();
     let x = sim.positions(0).unwrap();
     let rest = hierarchy.rest_positions(0).unwrap();
     assert!(x[0][1] < rest[0][1], "the bottom corner hangs lower: {:?}", x[0]);
     assert_eq!(x[420], rest[420]);
+    sim.set_mode(progsim::Mode::Dynamic).unwrap();
+    assert_eq!(sim.mode(), progsim::Mode::Dynamic);
+    sim.step_preview(1).unwrap();
 }
