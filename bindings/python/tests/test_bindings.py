@@ -33,11 +33,17 @@ def test_version_macros_come_from_the_header():
 
 
 def test_parameters_follow_the_def_struct():
+    # The library's parameter list and the def-struct come from one table: every listed
+    # table parameter is a def field, and every numeric def field is listed.
     fields = {name for name, _ in ffi.typeof("ps_sim_def").fields}
     for name in progsim.PARAMETERS:
         if "." in name and not name.startswith("gravity."):
             assert name.replace(".", "_", 1) in fields
+    for field in fields:
+        if field.startswith(("simulation_", "material_", "solver_")):
+            assert field.replace("_", ".", 1) in progsim.PARAMETERS
     assert "material.thickness" in progsim.PARAMETERS and "gravity.z" in progsim.PARAMETERS
+    assert "pressure" in progsim.PARAMETERS
 
 
 def test_arrays_in_the_right_layout_are_not_copied():

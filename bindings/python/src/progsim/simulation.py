@@ -54,9 +54,17 @@ _DEF_FIELDS: Dict[str, str] = {
 
 #: Every name :meth:`Simulation.set_param` knows: the parameter table's ``group.name``
 #: entries, ``gravity.x/y/z`` and ``pressure``.
-PARAMETERS: Tuple[str, ...] = tuple(
-    field.replace("_", ".", 1) for field in _DEF_FIELDS.values()
-) + ("gravity.x", "gravity.y", "gravity.z", "pressure")
+def _parameter_names() -> Tuple[str, ...]:
+    """Every name ps_sim_set_param accepts, as the library lists them (ps_param_info_get)."""
+    info = ffi.new("ps_param_info*")
+    names = []
+    for index in range(lib.ps_param_count()):
+        if lib.ps_param_info_get(index, info) == lib.PS_OK:
+            names.append(ffi.string(info.name).decode("ascii"))
+    return tuple(names)
+
+
+PARAMETERS: Tuple[str, ...] = _parameter_names()
 
 #: Short names accepted by set_param/get_param: ``thickness`` → ``material.thickness``.
 _ALIASES: Dict[str, str] = {
