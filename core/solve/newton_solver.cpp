@@ -74,7 +74,10 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
     analyzed_size_ = problem.num_free();
   }
   double energy = problem.value(x);
-  bool try_exact = true;
+  // Solves whose first exact attempts keep failing (a hanging cloth: compressed, indefinite)
+  // stop paying for them; every 8th solve probes again.
+  bool try_exact = exact_failure_streak_ < 3 || solves_ % 8 == 0;
+  ++solves_;
   int failed_exact = 0;  // an indefinite problem (e.g. pressure) stops trying after 3
   for (report.iterations = 0; report.iterations < settings.max_iterations; ++report.iterations) {
     {
@@ -92,6 +95,8 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
       report.stop = NewtonStop::factorization_failed;
       break;
     }
+    if (try_exact)
+      exact_failure_streak_ = report.exact_steps == exact_before ? exact_failure_streak_ + 1 : 0;
     if (try_exact && report.exact_steps == exact_before) {
       try_exact = false;
       ++failed_exact;

@@ -12,7 +12,8 @@ enum class HessianProjection {
   /// The exact Hessian whenever CHOLMOD factorizes it without a shift (then it is positive
   /// definite and gives a true Newton step), else the projected one. After a failed exact
   /// attempt, the exact Hessian is tried again only once a full step (α = 1) was accepted,
-  /// and not at all after three failures in one solve.
+  /// and not at all after three failures in one solve; after three failed attempts in a
+  /// row (across solves, e.g. every step of a hanging cloth) only every 8th solve tries.
   /// Projection discards the geometric stiffness of bent hinges; near a bent equilibrium
   /// (stiff thin strips) exact steps converge in far fewer iterations (Longva et al. 2023).
   adaptive,
@@ -84,6 +85,8 @@ class NewtonSolver {
   SparseCholesky cholesky_;
   const Problem* analyzed_for_ = nullptr;
   int analyzed_size_ = -1;
+  int exact_failure_streak_ = 0;  ///< consecutive failed exact attempts, across solves
+  long solves_ = 0;
   bool factorize_hessian(Problem& problem, const Vector& x, HessianProjection projection,
                          bool try_exact, NewtonReport& report);
 
