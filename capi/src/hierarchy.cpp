@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <type_traits>
 
 #include "handles.hpp"
 #include "mesh/mesh_io.hpp"
@@ -9,6 +10,9 @@
 
 namespace progsim::capi {
 namespace {
+
+// Faces are passed through the ABI without conversion.
+static_assert(std::is_same_v<Faces::Scalar, int32_t>, "progsim::Faces must hold int32_t");
 
 constexpr int32_t kHierarchyCookie = 0x50534844;  // "PSHD"
 
@@ -76,9 +80,7 @@ PS_API int32_t ps_hierarchy_create(const ps_hierarchy_def* def, const double* ve
     TriangleMesh mesh;
     mesh.vertices = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
         vertices, static_cast<Eigen::Index>(num_vertices), 3);
-    mesh.faces = Eigen::Map<const Eigen::Matrix<int32_t, Eigen::Dynamic, 3, Eigen::RowMajor>>(
-                     faces, static_cast<Eigen::Index>(num_faces), 3)
-                     .cast<int>();
+    mesh.faces = Eigen::Map<const Faces>(faces, static_cast<Eigen::Index>(num_faces), 3);
     *out = single_level(std::move(mesh)).release();
   });
 }
@@ -142,9 +144,7 @@ PS_API int32_t ps_hierarchy_get_faces(const ps_hierarchy* hierarchy, int32_t lev
   return guarded(hierarchy ? &hierarchy->last_error : nullptr, "ps_hierarchy_get_faces", [&] {
     require(hierarchy, "hierarchy");
     const TriangleMesh& mesh = level_mesh(*hierarchy, level);
-    const Eigen::Matrix<int32_t, Eigen::Dynamic, 3, Eigen::RowMajor> faces =
-        mesh.faces.cast<int32_t>();
-    copy_out(faces.data(), static_cast<size_t>(faces.size()), out, capacity, count);
+    copy_out(mesh.faces.data(), static_cast<size_t>(mesh.faces.size()), out, capacity, count);
   });
 }
 

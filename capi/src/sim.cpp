@@ -9,13 +9,21 @@
 namespace progsim::capi {
 namespace {
 
-/// A simulation of scene on hierarchy (borrowed), starting at the coarsest level.
-std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
+/// The handle of a built simulation of `scene` on `hierarchy`, at the coarsest level.
+std::unique_ptr<ps_sim> wrap(const ps_hierarchy* hierarchy, Scene scene,
+                             std::unique_ptr<DirectSimulation> simulation) {
   auto sim = std::make_unique<ps_sim>();
   sim->hierarchy = hierarchy;
-  sim->scene = scene;
-  sim->simulation = std::make_unique<DirectSimulation>(std::move(scene));
+  sim->scene = std::move(scene);
+  sim->simulation = std::move(simulation);
   sim->records.resize(hierarchy->levels.size());
+  return sim;
+}
+
+/// A simulation of scene on hierarchy (borrowed and counted as in use).
+std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
+  auto simulation = std::make_unique<DirectSimulation>(scene);
+  auto sim = wrap(hierarchy, std::move(scene), std::move(simulation));
   ++hierarchy->simulations;  // last: nothing below can throw
   sim->counts_as_user = true;
   return sim;
@@ -23,15 +31,11 @@ std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
 
 /// A simulation of a parsed scene that owns the hierarchy of its merged bodies.
 std::unique_ptr<ps_sim> sim_from_scene(Scene scene) {
-  auto hierarchy = std::make_unique<ps_hierarchy>();
   auto simulation = std::make_unique<DirectSimulation>(scene);
+  auto hierarchy = std::make_unique<ps_hierarchy>();
   hierarchy->levels.push_back(simulation->model().rest);
-  auto sim = std::make_unique<ps_sim>();
-  sim->hierarchy = hierarchy.get();
+  auto sim = wrap(hierarchy.get(), std::move(scene), std::move(simulation));
   sim->owned_hierarchy = std::move(hierarchy);
-  sim->scene = std::move(scene);
-  sim->simulation = std::move(simulation);
-  sim->records.resize(1);
   return sim;
 }
 
@@ -44,7 +48,7 @@ void edit_scene(ps_sim& sim, Edit&& edit) {
   sim.scene = std::move(scene);
 }
 
-const Vec3 vec3_or(const double* v, const Vec3& fallback) {
+Vec3 vec3_or(const double* v, const Vec3& fallback) {
   return v ? Vec3(v[0], v[1], v[2]) : fallback;
 }
 

@@ -136,16 +136,17 @@ void check_off_face_indices(const std::string& path) {
 
 /// Rejects a PLY "element NAME COUNT" line whose count is not a whole number the file can
 /// hold: CGAL's reader casts "-1" to 2^64 − 1 items and loops over them for hours (found by
-/// the fuzz target). Each item takes at least one byte.
-void check_ply_element_count(const std::string& path, std::istringstream& words,
-                             std::uintmax_t file_size) {
+/// the fuzz target). Each item takes at least one byte. Returns the element's name (" " for
+/// an element line without one, which still opens a block of properties).
+std::string check_ply_element_count(const std::string& path, std::istringstream& words,
+                                    std::uintmax_t file_size) {
   std::string name, count_text;
   words >> name >> count_text;
   std::uintmax_t count = 0;
   const auto [end, error] =
       std::from_chars(count_text.data(), count_text.data() + count_text.size(), count);
   if (error == std::errc() && end == count_text.data() + count_text.size() && count <= file_size)
-    return;
+    return name.empty() ? " " : name;
   fail(Status::io_error, path + ": cannot parse the file as PLY (element '" + name + "' declares " +
                              (count_text.empty() ? "no" : "'" + count_text + "'") +
                              " items, not a count the file's " + std::to_string(file_size) +
@@ -179,10 +180,7 @@ void check_ply_header(const std::string& path) {
     words >> keyword;
     if (keyword == "end_header") return;
     if (keyword == "element") {
-      std::istringstream name_of(line.substr(line.find("element") + 7));
-      name_of >> element;
-      if (element.empty()) element = " ";  // an element without a name still opens a block
-      check_ply_element_count(path, words, file_size);
+      element = check_ply_element_count(path, words, file_size);
     }
     if (keyword == "property" && element.empty())
       fail(Status::io_error, path +
