@@ -122,7 +122,13 @@ void check_off_face_indices(const std::string& path) {
     std::istringstream words(lines[first_face + f]);
     std::string token;
     long long k = 0;
-    if (!(words >> k) || k < 0) return;  // CGAL reports the malformed line
+    std::string count_text;
+    words >> count_text;
+    const auto [count_end, count_error] =
+        std::from_chars(count_text.data(), count_text.data() + count_text.size(), k);
+    if (count_error != std::errc() || count_end != count_text.data() + count_text.size() || k < 0)
+      fail(Status::invalid_mesh, path + ": face " + std::to_string(f) + " has '" + count_text +
+                                     "' vertices, not a whole number");
     for (long long i = 0; i < k && words >> token; ++i) {
       long long index = -1;
       const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), index);

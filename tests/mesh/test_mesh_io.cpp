@@ -132,6 +132,8 @@ TEST_F(MeshIo, RejectsBadIndicesAndPolygonsAsInvalidMeshes) {
                     {"bad_index.off: face 1 references vertex '7'", "[0, 4)"});
   expect_read_error("huge_index.off", Status::invalid_mesh,
                     {"huge_index.off: face 0 references vertex '37777777777777777777777777'"});
+  expect_read_error("negative_face_size.off", Status::invalid_mesh,
+                    {"negative_face_size.off: face 0 has '-1' vertices"});
   expect_read_error("negative_index.ply", Status::invalid_mesh,
                     {"negative_index.ply: face 1 references vertex -1"});
   expect_read_error("quad_face.obj", Status::invalid_mesh,
