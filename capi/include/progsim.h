@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 1
+#define PS_VERSION_MINOR 2
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -182,10 +182,13 @@ typedef enum ps_mode {
 
 /** Physical effects; only enabled effects cost anything. Combine with |. */
 typedef enum ps_effect {
-  PS_EFFECT_MEMBRANE = 1 << 0, /**< Neo-Hookean membrane stretching */
-  PS_EFFECT_BENDING = 1 << 1,  /**< discrete hinge bending */
-  PS_EFFECT_GRAVITY = 1 << 2,  /**< uniform gravity */
-  PS_EFFECT_PRESSURE = 1 << 3, /**< uniform inner pressure of closed meshes */
+  PS_EFFECT_MEMBRANE = 1 << 0,     /**< Neo-Hookean membrane stretching */
+  PS_EFFECT_BENDING = 1 << 1,      /**< discrete hinge bending */
+  PS_EFFECT_GRAVITY = 1 << 2,      /**< uniform gravity */
+  PS_EFFECT_PRESSURE = 1 << 3,     /**< uniform inner pressure of closed meshes */
+  PS_EFFECT_CONTACT = 1 << 4,      /**< IPC barrier self-contact with CCD; intersection-free */
+  PS_EFFECT_FRICTION = 1 << 5,     /**< Coulomb friction on contacts (with material_friction > 0) */
+  PS_EFFECT_STRAIN_LIMIT = 1 << 6, /**< barrier keeping stretches below material_strain_limit */
   PS_EFFECT_FORCE32 = 0x7fffffff
 } ps_effect;
 
@@ -202,6 +205,11 @@ typedef struct ps_sim_def {
   double material_poisson_ratio;        /**< 1, (−1, 0.5); default 0.3 */
   double material_thickness;            /**< m, (0, 10]; default 1e-3 */
   double material_density;              /**< kg/m³, (0, 1e6]; default 200 */
+  double material_friction;             /**< Coulomb μ, [0, 10]; default 0 (frictionless) */
+  double material_strain_limit;         /**< max stretch, 0 (none) or (1, 100]; default 0 */
+  double contact_dhat;                  /**< m, activation gap, (0, 10]; default 1e-3 */
+  double contact_stiffness;             /**< N/m³, [0, 1e30]; default 0 (adaptive) */
+  double contact_friction_velocity;     /**< m/s, (0, 1e3]; default 1e-3 */
   double solver_newton_tolerance;       /**< 1, (0, 1]; default 1e-5 */
   int32_t solver_max_newton_iterations; /**< ≥ 1; default 100 */
   ps_mode mode;                         /**< default PS_MODE_DYNAMIC */

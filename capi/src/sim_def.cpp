@@ -6,8 +6,9 @@
 namespace progsim::capi {
 namespace {
 constexpr int32_t kSimCookie = 0x50535344;  // "PSSD"
-constexpr uint32_t kAllEffects =
-    PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_GRAVITY | PS_EFFECT_PRESSURE;
+constexpr uint32_t kAllEffects = PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_GRAVITY |
+                                 PS_EFFECT_PRESSURE | PS_EFFECT_CONTACT | PS_EFFECT_FRICTION |
+                                 PS_EFFECT_STRAIN_LIMIT;
 }  // namespace
 
 uint32_t effect_bits(const EffectSet& effects) {

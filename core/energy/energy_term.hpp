@@ -1,7 +1,9 @@
 #pragma once
 /// @file The interface every energy term implements. A term knows nothing of levels,
 /// prolongation or which DOFs are fixed: the Problem composes terms and reduces.
+#include <Eigen/SparseCore>
 #include <cstddef>
+#include <vector>
 
 #include "common/types.hpp"
 
@@ -34,6 +36,16 @@ class EnergyTerm {
   /// With project_psd every element block is projected to the nearest positive
   /// semi-definite matrix (per-element eigenvalue clamp, projected Newton).
   virtual void hessian_values(const Vector& x, bool project_psd, double* values) const = 0;
+
+  /// False for terms whose stencils change with x (contact, friction): the Problem then asks
+  /// for their triplets at every Hessian evaluation instead of using a fixed pattern, and
+  /// such terms report hessian_entry_count() = 0.
+  virtual bool has_fixed_pattern() const { return true; }
+
+  /// Terms without a fixed pattern: appends (row, column, value) triplets of ∇²E_k(x) in full
+  /// DOF indices (duplicates are summed), element blocks PSD-projected if asked.
+  virtual void append_hessian_triplets(const Vector& /*x*/, bool /*project_psd*/,
+                                       std::vector<Eigen::Triplet<double>>& /*out*/) const {}
 };
 
 }  // namespace progsim

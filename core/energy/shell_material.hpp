@@ -9,6 +9,8 @@ struct ShellMaterial {
   double poisson_ratio = 0.3;   ///< ν, dimensionless, in [0, 0.5)
   double thickness = 1e-3;      ///< t, m
   double density = 200.0;       ///< ρ, kg/m³ (volumetric; areal density is ρ t)
+  double friction = 0.0;        ///< Coulomb μ of the surface (contact pairs mix √(μ_a μ_b))
+  double strain_limit = 0.0;    ///< s_max > 1: cap on membrane principal stretches; 0: none
 };
 
 /// Shear modulus μ = E / (2(1+ν)).

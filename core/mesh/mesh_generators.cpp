@@ -166,4 +166,22 @@ TriangleMesh make_cylinder(double radius, double length, double angle, int n_aro
   return mesh;
 }
 
+TriangleMesh make_box(const Vec3& size) {
+  if (!(size.array() > 0.0).all() || !size.allFinite())
+    reject_arguments("make_box: every size component must be positive",
+                     {size.x(), size.y(), size.z()});
+  TriangleMesh mesh;
+  mesh.vertices.resize(8, 3);
+  for (int v = 0; v < 8; ++v)  // bit k of v selects the upper side along axis k
+    for (int k = 0; k < 3; ++k) mesh.vertices(v, k) = ((v >> k) & 1 ? 0.5 : -0.5) * size[k];
+  mesh.faces.resize(12, 3);
+  mesh.faces << 0, 2, 3, 0, 3, 1,  // z = −
+      4, 5, 7, 4, 7, 6,            // z = +
+      0, 1, 5, 0, 5, 4,            // y = −
+      2, 6, 7, 2, 7, 3,            // y = +
+      0, 4, 6, 0, 6, 2,            // x = −
+      1, 3, 7, 1, 7, 5;            // x = +
+  return mesh;
+}
+
 }  // namespace progsim

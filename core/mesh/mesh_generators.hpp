@@ -26,4 +26,9 @@ TriangleMesh make_sphere(double radius, int subdivisions);
 /// n_along ≥ 1 and n_around ≥ 1 (≥ 3 for a full tube).
 TriangleMesh make_cylinder(double radius, double length, double angle, int n_around, int n_along);
 
+/// A closed axis-aligned box centred at the origin with edge lengths size (m): 8 vertices,
+/// 12 faces (two per side), outward normals, sharp edges. Throws Error(invalid_argument)
+/// unless every size component is positive and finite.
+TriangleMesh make_box(const Vec3& size);
+
 }  // namespace progsim

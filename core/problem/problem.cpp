@@ -1,6 +1,7 @@
 #include "problem/problem.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <numeric>
 
 #include "common/error.hpp"
@@ -8,12 +9,24 @@
 #include "common/timer.hpp"
 
 namespace progsim {
+namespace {
+
+/// Pattern versions are unique across Problems, so a solver never mistakes a new Problem at a
+/// reused address for the one it analysed.
+long next_pattern_version() {
+  static std::atomic<long> counter{0};
+  return ++counter;
+}
+
+}  // namespace
 
 Problem::Problem(int num_dofs) : num_dofs_(num_dofs), fixed_(num_dofs, false) {}
 
 void Problem::add_term_impl(std::unique_ptr<EnergyTerm> term) {
   if (finalized_) fail(Status::wrong_call_order, "Problem: add_term after finalize");
   stats_.push_back(TermStats{term->name()});
+  if (!term->has_fixed_pattern()) changing_terms_.push_back(terms_.size());
+  if (auto* filter = dynamic_cast<StepFilter*>(term.get())) filters_.push_back(filter);
   terms_.push_back(std::move(term));
 }
 
@@ -29,6 +42,7 @@ void Problem::finalize() {
   build_reduction();
   build_hessian_pattern();
   finalized_ = true;
+  pattern_version_ = next_pattern_version();
 }
 
 void Problem::build_reduction() {
@@ -132,7 +146,53 @@ const Problem::SparseMatrix& Problem::hessian(const Vector& x, bool project_psd)
       sum += entry_values_[nonzero_entries_[j]];
     values[i] = sum;
   }
-  return hessian_;
+  return changing_terms_.empty() ? hessian_ : add_changing_pattern_terms(x, project_psd);
+}
+
+/// hessian_ + the reduced lower-triangle triplets of the terms whose pattern changes.
+const Problem::SparseMatrix& Problem::add_changing_pattern_terms(const Vector& x,
+                                                                 bool project_psd) {
+  triplets_.clear();
+  for (std::size_t t : changing_terms_) {
+    ScopedTimer timer(stats_[t].seconds);
+    ++stats_[t].hessian_evaluations;
+    terms_[t]->append_hessian_triplets(x, project_psd, triplets_);
+  }
+  std::size_t kept = 0;
+  for (const Eigen::Triplet<double>& e : triplets_) {
+    const int r = full_to_free_[e.row()], c = full_to_free_[e.col()];
+    if (r >= 0 && c >= 0 && r >= c) triplets_[kept++] = Eigen::Triplet<double>(r, c, e.value());
+  }
+  triplets_.resize(kept);
+  changing_part_.resize(num_free(), num_free());
+  changing_part_.setFromTriplets(triplets_.begin(), triplets_.end());
+  SparseMatrix sum = hessian_ + changing_part_;
+  sum.makeCompressed();
+  const bool same_pattern = sum.nonZeros() == combined_.nonZeros() &&
+                            sum.cols() == combined_.cols() &&
+                            std::equal(sum.outerIndexPtr(), sum.outerIndexPtr() + sum.cols() + 1,
+                                       combined_.outerIndexPtr()) &&
+                            std::equal(sum.innerIndexPtr(), sum.innerIndexPtr() + sum.nonZeros(),
+                                       combined_.innerIndexPtr());
+  if (!same_pattern) pattern_version_ = next_pattern_version();
+  combined_ = std::move(sum);
+  return combined_;
+}
+
+void Problem::begin_solve(const Vector& x) {
+  for (StepFilter* f : filters_) f->begin_solve(x);
+}
+
+double Problem::max_step(const Vector& x, const Vector& p) {
+  double alpha = 1.0;
+  for (StepFilter* f : filters_) alpha = std::min(alpha, f->max_step(x, p));
+  return alpha;
+}
+
+bool Problem::end_iteration(const Vector& x) {
+  bool changed = false;
+  for (StepFilter* f : filters_) changed = f->end_iteration(x) || changed;
+  return changed;
 }
 
 void Problem::restrict_to_free(const Vector& full, Vector& reduced) const {

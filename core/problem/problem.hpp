@@ -8,6 +8,7 @@
 
 #include "energy/energy_term.hpp"
 #include "problem/term_stats.hpp"
+#include "solve/step_filter.hpp"
 
 namespace progsim {
 
@@ -20,7 +21,8 @@ class Problem {
   /// @param num_dofs 3|V|
   explicit Problem(int num_dofs);
 
-  /// Adds a term (before finalize()) and returns a reference to it.
+  /// Adds a term (before finalize()) and returns a reference to it. A term that is also a
+  /// StepFilter (contact) bounds every Newton step through max_step().
   template <class Term>
   Term& add_term(std::unique_ptr<Term> term) {
     Term& ref = *term;
@@ -44,8 +46,18 @@ class Problem {
   /// Full gradient ∇E(x) (3|V|) written into g; entries of fixed DOFs are zero.
   void gradient(const Vector& x, Vector& g);
   /// Reduced Hessian (free × free, lower triangle stored), per-element PSD-projected if asked.
-  /// The reference stays valid (pattern unchanged) until the next finalize().
+  /// Without terms of changing pattern the reference and its pattern stay valid until the next
+  /// finalize(); with them (contact) the pattern may change: see pattern_version().
   const SparseMatrix& hessian(const Vector& x, bool project_psd);
+
+  /// Changes whenever the pattern of the matrix hessian() returns changed (so a solver knows
+  /// when to redo its symbolic analysis).
+  long pattern_version() const { return pattern_version_; }
+
+  /// Forwards to every StepFilter term (see step_filter.hpp); without any: nothing, α = 1.
+  void begin_solve(const Vector& x);
+  double max_step(const Vector& x, const Vector& p);
+  bool end_iteration(const Vector& x);
 
   /// reduced = full restricted to the free DOFs.
   void restrict_to_free(const Vector& full, Vector& reduced) const;
@@ -62,6 +74,7 @@ class Problem {
   void add_term_impl(std::unique_ptr<EnergyTerm> term);
   void build_reduction();
   void build_hessian_pattern();
+  const SparseMatrix& add_changing_pattern_terms(const Vector& x, bool project_psd);
 
   int num_dofs_;
   bool finalized_ = false;
@@ -76,6 +89,12 @@ class Problem {
   std::vector<int> nonzero_entry_offsets_;
   std::vector<std::size_t> nonzero_entries_;
   SparseMatrix hessian_;
+  // Terms whose pattern changes with x (contact): their reduced triplets, summed with hessian_.
+  std::vector<std::size_t> changing_terms_;
+  std::vector<StepFilter*> filters_;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  SparseMatrix changing_part_, combined_;
+  long pattern_version_ = 0;
 };
 
 }  // namespace progsim

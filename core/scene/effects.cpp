@@ -14,6 +14,12 @@ const char* effect_name(Effect e) {
       return "gravity";
     case Effect::pressure:
       return "pressure";
+    case Effect::contact:
+      return "contact";
+    case Effect::friction:
+      return "friction";
+    case Effect::strain_limit:
+      return "strain_limit";
     case Effect::count_:
       break;
   }

@@ -11,6 +11,9 @@ enum class Effect : unsigned {
   bending,       ///< discrete hinge bending
   gravity,       ///< uniform gravitational acceleration
   pressure,      ///< uniform pressure on closed bodies (balloons)
+  contact,       ///< IPC barrier contact (self, between bodies, obstacles, ground) with CCD
+  friction,      ///< lagged smoothed Coulomb friction on contacts (needs contact; μ > 0)
+  strain_limit,  ///< barrier on membrane stretches above material.strain_limit
   count_,
 };
 

@@ -1,5 +1,6 @@
 #include "scene/scene.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "common/error.hpp"
@@ -7,6 +8,11 @@
 #include "scene/parameter_table.hpp"
 
 namespace progsim {
+
+Vec3 HandleMotion::position(const Vec3& rest, double t) const {
+  const Eigen::AngleAxisd rotation(angular_velocity * t, axis);  // x(t) = c + R(ωt)(x̄ − c) + vt
+  return center + rotation * (rest - center) + velocity * t + offset;
+}
 
 int Scene::num_steps() const {
   return std::max(1, static_cast<int>(std::lround(duration / time_step)));
@@ -23,6 +29,41 @@ void validate_material(const ShellMaterial& m) {
   check("material", "poisson_ratio", m.poisson_ratio);
   check("material", "thickness", m.thickness);
   check("material", "density", m.density);
+  check("material", "friction", m.friction);
+  check("material", "strain_limit", m.strain_limit);
+  if (m.strain_limit != 0.0 && !(m.strain_limit > 1.0))
+    fail(Status::invalid_scene, "material.strain_limit = " + std::to_string(m.strain_limit) +
+                                    " must be 0 (no limit) or greater than 1");
+}
+
+void validate_motion(const HandleMotion& m, const std::string& where) {
+  if (!m.velocity.allFinite() || !m.center.allFinite() || !m.offset.allFinite() ||
+      !m.axis.allFinite() || !std::isfinite(m.angular_velocity))
+    fail(Status::invalid_scene, where + ": motion has a non-finite value");
+  if (m.angular_velocity != 0.0 && !(m.axis.norm() > 0.0))
+    fail(Status::invalid_scene, where + ": rotation axis must be non-zero");
+}
+
+/// Obstacles, ground and contact settings; collision objects need the contact effect.
+void validate_contact(const Scene& scene) {
+  check("contact", "dhat", scene.contact.dhat);
+  check("contact", "stiffness", scene.contact.stiffness);
+  check("contact", "friction_velocity", scene.contact.friction_velocity);
+  const bool contact = scene.effects.has(Effect::contact);
+  if (!contact && (!scene.obstacles.empty() || scene.ground.enabled))
+    fail(Status::invalid_scene,
+         "the scene has obstacles or a ground but does not enable the 'contact' effect");
+  for (std::size_t k = 0; k < scene.obstacles.size(); ++k) {
+    const Obstacle& o = scene.obstacles[k];
+    const std::string where = "obstacles[" + std::to_string(k) + "]";
+    validate_mesh(o.mesh, o.name.empty() ? where : o.name);
+    validate_motion(o.motion, where);
+    check("material", "friction", o.friction);
+  }
+  const Ground& g = scene.ground;
+  if (g.enabled && (!g.normal.allFinite() || !(g.normal.norm() > 0.0) || !std::isfinite(g.height)))
+    fail(Status::invalid_scene, "ground: normal must be finite and non-zero, height finite");
+  check("material", "friction", g.friction);
 }
 
 void validate_handle(const Scene& scene, std::size_t h) {
@@ -37,12 +78,7 @@ void validate_handle(const Scene& scene, std::size_t h) {
     if (v < 0 || v >= n)
       fail(Status::invalid_scene, where + ": vertex " + std::to_string(v) +
                                       " is out of range [0, " + std::to_string(n) + ")");
-  const HandleMotion& m = handle.motion;
-  if (!m.velocity.allFinite() || !m.center.allFinite() || !m.offset.allFinite() ||
-      !m.axis.allFinite() || !std::isfinite(m.angular_velocity))
-    fail(Status::invalid_scene, where + ": motion has a non-finite value");
-  if (m.angular_velocity != 0.0 && !(m.axis.norm() > 0.0))
-    fail(Status::invalid_scene, where + ": rotation axis must be non-zero");
+  validate_motion(handle.motion, where);
 }
 
 }  // namespace
@@ -62,8 +98,11 @@ void validate_scene(const Scene& scene) {
         !std::isfinite(body.pressure_ramp))
       fail(Status::invalid_scene,
            body.name + ": pressure and pressure_ramp must be finite, ramp ≥ 0");
+    if (!body.velocity.allFinite())
+      fail(Status::invalid_scene, body.name + ": velocity has a non-finite component");
   }
   for (std::size_t h = 0; h < scene.handles.size(); ++h) validate_handle(scene, h);
+  validate_contact(scene);
 }
 
 }  // namespace progsim

@@ -22,8 +22,9 @@ struct Body {
   std::string name;
   TriangleMesh mesh;
   ShellMaterial material;
-  double pressure = 0.0;       ///< Pa, applied if the pressure effect is enabled
-  double pressure_ramp = 0.0;  ///< s; pressure grows linearly from 0 over this time (0: at once)
+  double pressure = 0.0;         ///< Pa, applied if the pressure effect is enabled
+  double pressure_ramp = 0.0;    ///< s; pressure grows linearly from 0 over this time (0: at once)
+  Vec3 velocity = Vec3::Zero();  ///< m/s, initial velocity of every vertex (dynamic scenes)
 };
 
 /// Rigid motion of a handle: x(t) = c + R(ω t)(x₀ − c) + v t + offset, with R a rotation
@@ -34,6 +35,36 @@ struct HandleMotion {
   Vec3 center = Vec3::Zero();     ///< m
   double angular_velocity = 0.0;  ///< rad/s
   Vec3 offset = Vec3::Zero();     ///< m, a translation a designer drags between steps
+
+  /// Where a point whose rest position is `rest` (m) is at time t (s).
+  Vec3 position(const Vec3& rest, double t) const;
+};
+
+/// A collision object: a triangle mesh on a rigid script, not simulated (C-IPC codimensional
+/// obstacles). Contact, friction and the contact offset act on it; it has no offset itself.
+struct Obstacle {
+  std::string name;
+  TriangleMesh mesh;      ///< world space at t = 0
+  HandleMotion motion;    ///< scripted rigid motion (static by default)
+  double friction = 0.0;  ///< Coulomb coefficient μ of its surface
+};
+
+/// The analytic ground: the half-space n·x ≥ height, a collision object without a mesh.
+struct Ground {
+  bool enabled = false;
+  Vec3 normal = Vec3::UnitY();  ///< unit normal pointing to the free side
+  double height = 0.0;          ///< m, offset of the plane along the normal
+  double friction = 0.0;        ///< Coulomb coefficient μ
+};
+
+/// Contact settings (IPC, Li et al. 2020; C-IPC, Li et al. 2021), used when the contact
+/// effect is enabled.
+struct ContactSettings {
+  double dhat = 1e-3;  ///< activation gap d̂ (m): the barrier acts on pairs closer than this
+  /// Barrier stiffness κ (N/m³ on squared distances); 0 chooses it from the scene's loads and
+  /// grows it when a gap gets tiny (adaptive, IPC §4.3).
+  double stiffness = 0.0;
+  double friction_velocity = 1e-3;  ///< ε_v (m/s): slip speed below which friction is smoothed
 };
 
 /// Vertices of one body held on a scripted trajectory (Dirichlet boundary condition).
@@ -54,6 +85,9 @@ struct Scene {
   EffectSet effects;
   std::vector<Body> bodies;
   std::vector<Handle> handles;
+  std::vector<Obstacle> obstacles;  ///< collision objects (need the contact effect)
+  Ground ground;                    ///< analytic ground (needs the contact effect)
+  ContactSettings contact;
   NewtonSettings solver;
 
   /// Number of steps: round(duration / time_step), at least 1.

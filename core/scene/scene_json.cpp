@@ -117,8 +117,14 @@ TriangleMesh generated_mesh(const Json& j, const std::string& where) {
           "need radius > 0, length > 0, angle_degrees in (0, 360], n_around ≥ 3, n_along ≥ 1");
     return make_cylinder(r, len, deg * kPi / 180.0, na, nl);
   }
+  if (kind == "box") {
+    expect_keys(j, where, {"generator", "size"});
+    const Vec3 size = vec3(require(j, "size", where), where + ".size");
+    if (!(size.array() > 0.0).all()) scene_error(where + ".size", "must be positive");
+    return make_box(size);
+  }
   scene_error(where + ".generator",
-              "unknown generator '" + kind + "' (known: grid, sphere, cylinder)");
+              "unknown generator '" + kind + "' (known: grid, sphere, cylinder, box)");
 }
 
 TriangleMesh body_mesh(const Json& j, const std::string& where, const std::string& base_dir) {
@@ -152,17 +158,22 @@ void apply_transform(const Json& j, const std::string& where, Positions& p) {
 }
 
 ShellMaterial material(const Json& j, const std::string& where) {
-  expect_keys(j, where, {"youngs_modulus", "poisson_ratio", "thickness", "density"});
+  expect_keys(
+      j, where,
+      {"youngs_modulus", "poisson_ratio", "thickness", "density", "friction", "strain_limit"});
   ShellMaterial m;
   m.youngs_modulus = parameter(j, "material", "youngs_modulus", where);
   m.poisson_ratio = parameter(j, "material", "poisson_ratio", where);
   m.thickness = parameter(j, "material", "thickness", where);
   m.density = parameter(j, "material", "density", where);
+  m.friction = parameter(j, "material", "friction", where);
+  m.strain_limit = parameter(j, "material", "strain_limit", where);
   return m;
 }
 
 Body body(const Json& j, const std::string& where, const std::string& base_dir) {
-  expect_keys(j, where, {"name", "mesh", "transform", "material", "pressure", "pressure_ramp"});
+  expect_keys(j, where,
+              {"name", "mesh", "transform", "material", "pressure", "pressure_ramp", "velocity"});
   Body b;
   b.name = j.value("name", where);
   b.mesh = body_mesh(require(j, "mesh", where), where + ".mesh", base_dir);
@@ -172,6 +183,7 @@ Body body(const Json& j, const std::string& where, const std::string& base_dir) 
       material(j.contains("material") ? j.at("material") : Json::object(), where + ".material");
   b.pressure = number_or(j, "pressure", 0.0, where);
   b.pressure_ramp = number_or(j, "pressure_ramp", 0.0, where);
+  b.velocity = vec3_or(j, "velocity", Vec3::Zero(), where);
   return b;
 }
 
@@ -232,6 +244,37 @@ Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string&
   return h;
 }
 
+Obstacle obstacle(const Json& j, const std::string& where, const std::string& base_dir) {
+  expect_keys(j, where, {"name", "mesh", "transform", "motion", "friction"});
+  Obstacle o;
+  o.name = j.value("name", where);
+  o.mesh = body_mesh(require(j, "mesh", where), where + ".mesh", base_dir);
+  if (j.contains("transform"))
+    apply_transform(j.at("transform"), where + ".transform", o.mesh.vertices);
+  if (j.contains("motion")) o.motion = motion(j.at("motion"), where + ".motion");
+  o.friction = parameter(j, "material", "friction", where);
+  return o;
+}
+
+Ground ground(const Json& j) {
+  expect_keys(j, "ground", {"normal", "height", "friction"});
+  Ground g;
+  g.enabled = true;
+  g.normal = vec3_or(j, "normal", g.normal, "ground");
+  if (!(g.normal.norm() > 0.0)) scene_error("ground.normal", "must be non-zero");
+  g.normal.normalize();
+  g.height = number_or(j, "height", 0.0, "ground");
+  g.friction = parameter(j, "material", "friction", "ground");
+  return g;
+}
+
+void contact(const Json& j, Scene& scene) {
+  expect_keys(j, "contact", {"dhat", "stiffness", "friction_velocity"});
+  scene.contact.dhat = parameter(j, "contact", "dhat", "contact");
+  scene.contact.stiffness = parameter(j, "contact", "stiffness", "contact");
+  scene.contact.friction_velocity = parameter(j, "contact", "friction_velocity", "contact");
+}
+
 void simulation(const Json& j, Scene& scene) {
   const std::string where = "simulation";
   expect_keys(j, where, {"mode", "time_step", "duration", "output_every"});
@@ -256,7 +299,8 @@ void solver(const Json& j, Scene& scene) {
 
 Scene scene_from_json(const Json& root, const std::string& base_dir) {
   expect_keys(root, "scene",
-              {"name", "simulation", "gravity", "effects", "solver", "bodies", "handles"});
+              {"name", "simulation", "gravity", "effects", "solver", "bodies", "handles", "contact",
+               "obstacles", "ground"});
   Scene scene;
   scene.name = root.value("name", std::string("scene"));
   simulation(root.contains("simulation") ? root.at("simulation") : Json::object(), scene);
@@ -279,6 +323,15 @@ Scene scene_from_json(const Json& root, const std::string& base_dir) {
       scene.handles.push_back(
           handle(handles[h], scene.bodies, "handles[" + std::to_string(h) + "]"));
   }
+  contact(root.contains("contact") ? root.at("contact") : Json::object(), scene);
+  if (root.contains("obstacles")) {
+    const Json& obstacles = root.at("obstacles");
+    if (!obstacles.is_array()) scene_error("obstacles", "must be an array");
+    for (std::size_t k = 0; k < obstacles.size(); ++k)
+      scene.obstacles.push_back(
+          obstacle(obstacles[k], "obstacles[" + std::to_string(k) + "]", base_dir));
+  }
+  if (root.contains("ground")) scene.ground = ground(root.at("ground"));
   validate_scene(scene);
   return scene;
 }

@@ -9,6 +9,9 @@
 #include "energy/inertia.hpp"
 #include "energy/neo_hookean_membrane.hpp"
 #include "energy/pressure.hpp"
+#include "mesh/intersection_check.hpp"
+#include "sim/contact_setup.hpp"
+#include "sim/obstacle_script.hpp"
 
 namespace progsim {
 namespace {
@@ -17,6 +20,26 @@ namespace {
 Scene validated(Scene scene) {
   validate_scene(scene);
   return scene;
+}
+
+/// Rounds of CCD-safe scripted motion (each followed by a solve) before a step gives up.
+constexpr int kMaxScriptRounds = 50;
+
+/// Sums the iterations and timings of a solve into a step's report; the rest is the last solve's.
+void accumulate(NewtonReport& total, const NewtonReport& part) {
+  const int iterations = total.iterations + part.iterations;
+  const int exact = total.exact_steps + part.exact_steps;
+  const double shift = std::max(total.max_shift, part.max_shift);
+  NewtonTimings timings = total.timings;
+  timings.assembly += part.timings.assembly;
+  timings.factorization += part.timings.factorization;
+  timings.solve += part.timings.solve;
+  timings.line_search += part.timings.line_search;
+  total = part;
+  total.iterations = iterations;
+  total.exact_steps = exact;
+  total.max_shift = shift;
+  total.timings = timings;
 }
 
 /// Faces of body b, renumbered into the merged model.
@@ -30,9 +53,14 @@ Faces body_faces(const ShellModel& model, int b) {
 DirectSimulation::DirectSimulation(Scene scene)
     : scene_(validated(std::move(scene))),
       model_(build_shell_model(scene_)),
-      handles_(scene_, model_) {
+      handles_(scene_, model_),
+      obstacles_(std::make_unique<ObstacleScript>(scene_)) {
   x_ = as_dofs(model_.rest.vertices);
   v_ = Vector::Zero(x_.size());
+  if (scene_.mode == StepMode::dynamic)
+    for (std::size_t b = 0; b < scene_.bodies.size(); ++b)
+      for (int v = model_.vertex_offset[b]; v < model_.vertex_offset[b + 1]; ++v)
+        v_.segment<3>(3 * v) = scene_.bodies[b].velocity;
   length_ = bounding_box_diagonal(model_.rest.vertices);
   build_problem();
 }
@@ -40,58 +68,131 @@ DirectSimulation::DirectSimulation(Scene scene)
 DirectSimulation::~DirectSimulation() = default;
 
 void DirectSimulation::build_problem() {
+  // Built aside and committed at the end: on Error (e.g. an intersecting start) the simulation
+  // keeps its previous problem. The previous contact term passes on obstacle positions and κ.
   const int n = model_.rest.num_vertices();
-  problem_ = std::make_unique<Problem>(3 * n);
+  auto problem = std::make_unique<Problem>(3 * n);
+  Inertia* inertia = nullptr;
+  std::vector<std::pair<Pressure*, int>> pressures;
   const EffectSet& fx = scene_.effects;
   const Positions& rest = model_.rest.vertices;
   if (scene_.mode == StepMode::dynamic)
-    inertia_ =
-        &problem_->add_term(std::make_unique<Inertia>(model_.vertex_masses, scene_.time_step));
+    inertia = &problem->add_term(std::make_unique<Inertia>(model_.vertex_masses, scene_.time_step));
   if (fx.has(Effect::membrane))
-    problem_->add_term(
+    problem->add_term(
         std::make_unique<NeoHookeanMembrane>(rest, model_.rest.faces, model_.face_materials));
   if (fx.has(Effect::bending))
-    problem_->add_term(std::make_unique<HingeBending>(
+    problem->add_term(std::make_unique<HingeBending>(
         rest, model_.rest.faces, model_.topology.hinges, model_.face_materials));
   if (fx.has(Effect::gravity))
-    problem_->add_term(std::make_unique<Gravity>(model_.vertex_masses, scene_.gravity));
+    problem->add_term(std::make_unique<Gravity>(model_.vertex_masses, scene_.gravity));
   if (fx.has(Effect::pressure)) {
     for (int b = 0; b < static_cast<int>(scene_.bodies.size()); ++b) {
       if (scene_.bodies[b].pressure == 0.0) continue;
       auto term = std::make_unique<Pressure>(rest, body_faces(model_, b), 0.0);
-      pressures_.emplace_back(&problem_->add_term(std::move(term)), b);
+      pressures.emplace_back(&problem->add_term(std::move(term)), b);
     }
   }
-  problem_->set_fixed_dofs(handles_.fixed_dofs(n));
-  problem_->finalize();
+  ContactPotential* contact = fx.has(Effect::contact) ? &add_contact(*problem) : nullptr;
+  FrictionPotential* friction = nullptr;
+  if (contact && fx.has(Effect::friction))
+    if (auto term = make_friction_potential(scene_, *contact))
+      friction = &problem->add_term(std::move(term));
+  StrainLimit* strain_limit = nullptr;
+  if (fx.has(Effect::strain_limit))
+    if (auto term = make_strain_limit(model_)) strain_limit = &problem->add_term(std::move(term));
+  problem->set_fixed_dofs(handles_.fixed_dofs(n));
+  problem->finalize();
+  problem_ = std::move(problem);
+  inertia_ = inertia;
+  pressures_ = std::move(pressures);
+  contact_ = contact;
+  friction_ = friction;
+  strain_limit_ = strain_limit;
 }
 
-void DirectSimulation::apply_loads(double t) {
+ContactPotential& DirectSimulation::add_contact(Problem& problem) {
+  auto contact = make_contact_potential(scene_, model_, *obstacles_);
+  if (contact_ && contact_->obstacle_positions().rows() == contact->obstacle_positions().rows())
+    contact->set_obstacle_positions(contact_->obstacle_positions());
+  else
+    contact->set_obstacle_positions(obstacles_->at(time()));
+  if (contact_) contact->set_stiffness(std::max(contact->stiffness(), contact_->stiffness()));
+  Positions all(contact->mesh().num_vertices(), 3);
+  all.topRows(contact->mesh().num_shell_vertices) = as_positions(x_);
+  all.bottomRows(contact->mesh().num_obstacle_vertices) = contact->obstacle_positions();
+  check_intersection_free(all, contact->mesh().faces, scene_.name);  // CGAL exact predicates
+  contact->check_separated(x_);
+  return problem.add_term(std::move(contact));
+}
+
+Positions DirectSimulation::obstacle_positions() const {
+  return contact_ ? contact_->obstacle_positions() : Positions(0, 3);
+}
+
+void DirectSimulation::apply_pressure(double t) {
   for (auto& [term, b] : pressures_) {
     const Body& body = scene_.bodies[b];
     const double ramp = body.pressure_ramp > 0.0 ? std::min(1.0, t / body.pressure_ramp) : 1.0;
     term->set_pressure(ramp * body.pressure);
   }
-  handles_.apply(t, x_);
+}
+
+double DirectSimulation::advance_scripts(double t, double decrement_scale, NewtonReport& report) {
+  if (!contact_) {
+    handles_.apply(t, x_);
+    return 1.0;
+  }
+  script_target_ = x_;
+  handles_.apply(t, script_target_);
+  const Positions obstacle_target = obstacles_->at(t);
+  double reached = 0.0;
+  for (int round = 0; round < kMaxScriptRounds; ++round) {
+    script_step_ = script_target_ - x_;  // handles only: the solve moves the free DOFs
+    for (int d = 0; d < problem_->num_dofs(); ++d)
+      if (!problem_->is_fixed(d)) script_step_[d] = 0.0;
+    const Positions obstacles_now = contact_->obstacle_positions();
+    if (script_step_.isZero(0.0) && obstacles_now == obstacle_target) return 1.0;
+    const double alpha = contact_->max_scripted_step(x_, script_step_, obstacle_target);
+    if (alpha >= 1.0) {
+      x_ += script_step_;
+      contact_->set_obstacle_positions(obstacle_target);
+      return 1.0;
+    }
+    x_ += alpha * script_step_;
+    contact_->set_obstacle_positions(obstacles_now + alpha * (obstacle_target - obstacles_now));
+    reached += alpha * (1.0 - reached);
+    accumulate(report, solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
+  }
+  return reached;
 }
 
 void DirectSimulation::update_scene(Scene scene) {
   validate_scene(scene);
   const bool same_size = scene.bodies.size() == scene_.bodies.size() &&
-                         std::equal(scene.bodies.begin(), scene.bodies.end(),
-                                    scene_.bodies.begin(), [](const Body& a, const Body& b) {
+                         std::equal(scene.bodies.begin(), scene.bodies.end(), scene_.bodies.begin(),
+                                    [](const Body& a, const Body& b) {
                                       return a.mesh.num_vertices() == b.mesh.num_vertices() &&
                                              a.mesh.num_faces() == b.mesh.num_faces();
                                     });
   if (!same_size)
     fail(Status::invalid_argument, "update_scene: the bodies' meshes must keep their sizes");
-  scene_ = std::move(scene);
-  model_ = build_shell_model(scene_);
-  handles_ = HandleTargets(scene_, model_);
-  inertia_ = nullptr;
-  pressures_.clear();
-  build_problem();
-  solver_.reset();
+  std::swap(scene_, scene);
+  ShellModel model = build_shell_model(scene_);
+  std::swap(model_, model);
+  HandleTargets handles(scene_, model_);
+  std::swap(handles_, handles);
+  auto obstacles = std::make_unique<ObstacleScript>(scene_);
+  std::swap(obstacles_, obstacles);
+  try {
+    build_problem();
+  } catch (const Error&) {  // e.g. a thicker shell now overlaps: keep the previous scene
+    std::swap(scene_, scene);
+    std::swap(model_, model);
+    std::swap(handles_, handles);
+    std::swap(obstacles_, obstacles);
+    throw;
+  }
   if (scene_.mode == StepMode::quasistatic) v_.setZero();
 }
 
@@ -102,16 +203,24 @@ StepRecord DirectSimulation::step() {
   const double t = (steps_taken_ + 1) * h;
   x_previous_ = x_;
   if (inertia_) inertia_->set_target(x_ + h * v_);  // x̂ = xᵗ + h vᵗ (implicit Euler)
-  apply_loads(t);
+  if (contact_) contact_->reset_min_gap();
+  const ContactStats contact_before = contact_ ? contact_->stats() : ContactStats{};
+  if (friction_) friction_->lag(x_);  // lagged friction (IPC §5): frozen at the step's start
+  apply_pressure(t);
   StepRecord record;
   const double decrement_scale = inertia_ ? h : 1.0;
-  record.newton = solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_);
+  record.script_reached = advance_scripts(t, decrement_scale, record.newton);
+  accumulate(record.newton,
+             solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
   if (inertia_) v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
   ++steps_taken_;
   record.step = steps_taken_;
   record.time = t;
   for (std::size_t k = 0; k < before.size(); ++k)
     record.terms.push_back(problem_->term_stats()[k].since(before[k]));
+  if (contact_) record.contact = contact_->stats().since(contact_before);
+  if (friction_) record.friction_contacts = friction_->num_contacts();
+  if (strain_limit_) record.max_stretch = strain_limit_->max_stretch(x_);
   record.seconds = timer.seconds();
   return record;
 }

@@ -15,14 +15,22 @@ namespace progsim {
 
 class Inertia;
 class Pressure;
+class ContactPotential;
+class FrictionPotential;
+class StrainLimit;
+class ObstacleScript;
 
 /// Builds one energy term per enabled effect and advances the scene step by step with
 /// projected Newton. Dynamic scenes minimise the implicit-Euler incremental potential;
 /// quasistatic scenes minimise the potential energy at each step's loads.
 class DirectSimulation {
  public:
-  /// Validates the scene (throws Error on bad input) and builds the problem.
+  /// Validates the scene (throws Error on bad input) and builds the problem. With contact, a
+  /// scene whose shell and obstacles intersect (CGAL exact predicates) or come within their
+  /// contact offsets is rejected with Error(intersecting) naming the pair.
   explicit DirectSimulation(Scene scene);
+  DirectSimulation(const DirectSimulation&) = delete;
+  DirectSimulation& operator=(const DirectSimulation&) = delete;
   ~DirectSimulation();
 
   /// Advances one step. Never throws for numerical trouble: a failed Newton solve is
@@ -50,10 +58,19 @@ class DirectSimulation {
   double characteristic_length() const { return length_; }
   /// Total counters per term since construction.
   const std::vector<TermStats>& term_totals() const { return problem_->term_stats(); }
+  /// The contact term, or nullptr when the scene does not enable contact.
+  const ContactPotential* contact() const { return contact_; }
+  /// Obstacle vertex positions now (|V_obstacles| × 3); empty without obstacles.
+  Positions obstacle_positions() const;
 
  private:
   void build_problem();
-  void apply_loads(double t);
+  /// Adds the contact term after checking that the current state does not intersect.
+  ContactPotential& add_contact(Problem& problem);
+  void apply_pressure(double t);
+  /// Moves handles and obstacles toward their scripts at time t, in CCD-safe rounds with a
+  /// Newton solve between rounds when contact stops them; returns the fraction reached.
+  double advance_scripts(double t, double decrement_scale, NewtonReport& report);
 
   Scene scene_;
   ShellModel model_;
@@ -62,7 +79,11 @@ class DirectSimulation {
   NewtonSolver solver_;
   Inertia* inertia_ = nullptr;                        // owned by problem_, null for quasistatics
   std::vector<std::pair<Pressure*, int>> pressures_;  // (term, body), owned by problem_
-  Vector x_, v_, x_previous_;
+  std::unique_ptr<ObstacleScript> obstacles_;
+  ContactPotential* contact_ = nullptr;    // owned by problem_, null without contact
+  FrictionPotential* friction_ = nullptr;  // owned by problem_, null without friction
+  StrainLimit* strain_limit_ = nullptr;    // owned by problem_, null without a limit
+  Vector x_, v_, x_previous_, script_target_, script_step_;
   int steps_taken_ = 0;
   double length_ = 1.0;
 };

@@ -1,7 +1,5 @@
 #include "sim/handle_targets.hpp"
 
-#include <Eigen/Geometry>
-
 namespace progsim {
 
 HandleTargets::HandleTargets(const Scene& scene, const ShellModel& model) {
@@ -26,10 +24,7 @@ std::vector<bool> HandleTargets::fixed_dofs(int num_vertices) const {
 
 void HandleTargets::apply(double t, Vector& x) const {
   for (std::size_t i = 0; i < vertices_.size(); ++i) {
-    const HandleMotion& m = motions_[handle_of_[i]];
-    const Eigen::AngleAxisd rotation(m.angular_velocity * t, m.axis);
-    x.segment<3>(3 * vertices_[i]) =
-        m.center + rotation * (rest_[i] - m.center) + m.velocity * t + m.offset;
+    x.segment<3>(3 * vertices_[i]) = motions_[handle_of_[i]].position(rest_[i], t);
   }
 }
 

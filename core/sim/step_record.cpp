@@ -1,5 +1,6 @@
 #include "sim/step_record.hpp"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 namespace progsim {
@@ -28,7 +29,23 @@ std::string to_json_line(const StepRecord& r) {
                            {"factorization", n.timings.factorization},
                            {"solve", n.timings.solve},
                            {"line_search", n.timings.line_search}}},
-                         {"terms", terms}};
+                         {"terms", terms},
+                         {"script_reached", r.script_reached}};
+  if (r.contact) {
+    const ContactStats& c = *r.contact;
+    line["contact"] = {
+        {"broad_phase_runs", c.broad_phase_runs},
+        {"candidate_pairs", c.candidate_pairs},
+        {"active_pairs", c.active_pairs},
+        {"ccd_calls", c.ccd_calls},
+        {"stiffness_updates", c.stiffness_updates},
+        {"min_gap", std::isfinite(c.min_gap) ? nlohmann::json(c.min_gap) : nlohmann::json(nullptr)},
+        {"broad_phase_seconds", c.broad_phase_seconds},
+        {"ccd_seconds", c.ccd_seconds},
+        {"assembly_seconds", c.assembly_seconds}};
+  }
+  if (r.friction_contacts) line["friction_contacts"] = *r.friction_contacts;
+  if (r.max_stretch) line["max_stretch"] = *r.max_stretch;
   return line.dump();
 }
 

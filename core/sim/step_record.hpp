@@ -1,8 +1,10 @@
 #pragma once
 /// @file What one simulation step reports.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "contact/contact_stats.hpp"
 #include "problem/term_stats.hpp"
 #include "solve/newton_solver.hpp"
 
@@ -15,6 +17,15 @@ struct StepRecord {
   NewtonReport newton;           ///< iterations, stop reason, energy, gradient norm, phase timings
   std::vector<TermStats> terms;  ///< counters of each built term during this step
   double seconds = 0.0;          ///< wall time of the whole step
+  /// With the contact effect: this step's contact counters (min_gap: smallest gap this step).
+  std::optional<ContactStats> contact;
+  /// With friction: contacts frozen for this step's friction (μ > 0 only).
+  std::optional<int> friction_contacts;
+  /// With the strain-limit effect: the largest membrane stretch after the step.
+  std::optional<double> max_stretch;
+  /// Fraction of the handles' and obstacles' scripted motion reached this step (1: all; less
+  /// when contact kept them from reaching it safely).
+  double script_reached = 1.0;
 };
 
 /// One line of JSON describing the record (for logs: `steps.jsonl`).

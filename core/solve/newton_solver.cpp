@@ -24,13 +24,21 @@ const char* stop_name(NewtonStop stop) {
 
 bool NewtonSolver::line_search(Problem& problem, const Vector& x, double energy, double slope,
                                const NewtonSettings& settings, double& alpha, double& new_energy) {
-  for (int k = 0; k < settings.max_backtracks; ++k, alpha *= 0.5) {
+  alpha = problem.max_step(x, step_);  // CCD bound: no step may let primitives cross
+  for (int k = 0; k < settings.max_backtracks && alpha > 0.0; ++k, alpha *= 0.5) {
     trial_ = x + alpha * step_;
     new_energy = problem.value(trial_);
     if (std::isfinite(new_energy) && new_energy <= energy + settings.armijo * alpha * slope)
       return true;  // Armijo condition
   }
   return false;
+}
+
+void NewtonSolver::analyze_if_needed(const Problem& problem, const Problem::SparseMatrix& h) {
+  if (analyzed_for_ == &problem && analyzed_version_ == problem.pattern_version()) return;
+  cholesky_.analyze(h);
+  analyzed_for_ = &problem;
+  analyzed_version_ = problem.pattern_version();
 }
 
 /// Assembles and factorizes the Hessian of this iteration per the projection policy.
@@ -44,6 +52,7 @@ bool NewtonSolver::factorize_hessian(Problem& problem, const Vector& x,
     {
       ScopedTimer timer(time.assembly);
       exact = &problem.hessian(x, false);
+      analyze_if_needed(problem, *exact);
     }
     ScopedTimer timer(time.factorization);
     if (cholesky_.factorize(*exact, projection == HessianProjection::never)) {
@@ -57,6 +66,7 @@ bool NewtonSolver::factorize_hessian(Problem& problem, const Vector& x,
   {
     ScopedTimer timer(time.assembly);
     projected = &problem.hessian(x, true);
+    analyze_if_needed(problem, *projected);
   }
   ScopedTimer timer(time.factorization);
   if (!cholesky_.factorize(*projected)) return false;
@@ -68,11 +78,7 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
                                     double decrement_scale, double length) {
   NewtonReport report;
   NewtonTimings& time = report.timings;
-  if (analyzed_for_ != &problem || analyzed_size_ != problem.num_free()) {
-    cholesky_.analyze(problem.hessian(x, true));  // same pattern projected or not
-    analyzed_for_ = &problem;
-    analyzed_size_ = problem.num_free();
-  }
+  problem.begin_solve(x);
   double energy = problem.value(x);
   // Solves whose first exact attempts keep failing (a hanging cloth: compressed, indefinite)
   // stop paying for them; every 8th solve probes again.
@@ -125,6 +131,7 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
     if (alpha == 1.0 && failed_exact < 3) try_exact = true;
     x = trial_;
     energy = new_energy;
+    if (problem.end_iteration(x)) energy = problem.value(x);  // e.g. contact stiffness grew
   }
   if (report.stop == NewtonStop::max_iterations) {  // report the state actually returned
     ScopedTimer timer(time.assembly);

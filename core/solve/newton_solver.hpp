@@ -74,19 +74,16 @@ class NewtonSolver {
   NewtonReport minimize(Problem& problem, Vector& x, const NewtonSettings& settings,
                         double decrement_scale, double length);
 
-  /// Forgets the symbolic analysis: call when the Problem was rebuilt (a new Problem may
-  /// reuse the old one's address with a different sparsity pattern).
-  void reset() { analyzed_for_ = nullptr; }
-
  private:
   bool line_search(Problem& problem, const Vector& x, double energy, double slope,
                    const NewtonSettings& settings, double& alpha, double& new_energy);
 
   SparseCholesky cholesky_;
   const Problem* analyzed_for_ = nullptr;
-  int analyzed_size_ = -1;
+  long analyzed_version_ = -1;
   int exact_failure_streak_ = 0;  ///< consecutive failed exact attempts, across solves
   long solves_ = 0;
+  void analyze_if_needed(const Problem& problem, const Problem::SparseMatrix& h);
   bool factorize_hessian(Problem& problem, const Vector& x, HessianProjection projection,
                          bool try_exact, NewtonReport& report);
 

@@ -50,6 +50,9 @@ Eigen::MatrixXd assembled_hessian(const EnergyTerm& term, const Vector& x, bool 
   term.hessian_values(x, project_psd, values.data());
   Eigen::MatrixXd hess = Eigen::MatrixXd::Zero(x.size(), x.size());
   for (std::size_t k = 0; k < m; ++k) hess(rows[k], cols[k]) += values[k];
+  std::vector<Eigen::Triplet<double>> triplets;  // terms whose pattern changes (contact)
+  term.append_hessian_triplets(x, project_psd, triplets);
+  for (const auto& t : triplets) hess(t.row(), t.col()) += t.value();
   return hess;
 }
 

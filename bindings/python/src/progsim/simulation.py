@@ -34,6 +34,9 @@ EFFECTS: Dict[str, int] = {
     "bending": lib.PS_EFFECT_BENDING,
     "gravity": lib.PS_EFFECT_GRAVITY,
     "pressure": lib.PS_EFFECT_PRESSURE,
+    "contact": lib.PS_EFFECT_CONTACT,
+    "friction": lib.PS_EFFECT_FRICTION,
+    "strain_limit": lib.PS_EFFECT_STRAIN_LIMIT,
 }
 
 #: Step modes and their ``ps_mode`` values.
@@ -185,7 +188,8 @@ class Simulation(NativeObject):
             max_newton_iterations: >= 1; default 100.
             mode: ``"dynamic"`` (implicit Euler) or ``"quasistatic"`` (energy minimisation
                 per load step).
-            effects: names among ``membrane``, ``bending``, ``gravity``, ``pressure``;
+            effects: names among ``membrane``, ``bending``, ``gravity``, ``pressure``,
+                ``contact``, ``friction``, ``strain_limit``;
                 default ``{"membrane", "bending", "gravity"}``.
             gravity: (gx, gy, gz), m/s²; default (0, -9.81, 0).
             pressure: Pa, applied when the ``pressure`` effect is on; default 0.

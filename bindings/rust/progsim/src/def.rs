@@ -74,12 +74,25 @@ pub enum Effect {
     Gravity,
     /// Uniform inner pressure of closed meshes (see [`SimulationDef::pressure`]).
     Pressure,
+    /// IPC barrier self-contact with CCD: configurations never intersect.
+    Contact,
+    /// Coulomb friction on contacts (see [`SimulationDef::friction`]).
+    Friction,
+    /// Barrier keeping membrane stretches below [`SimulationDef::strain_limit`].
+    StrainLimit,
 }
 
 impl Effect {
     /// Every effect, in bit order.
-    pub const ALL: [Effect; 4] =
-        [Effect::Membrane, Effect::Bending, Effect::Gravity, Effect::Pressure];
+    pub const ALL: [Effect; 7] = [
+        Effect::Membrane,
+        Effect::Bending,
+        Effect::Gravity,
+        Effect::Pressure,
+        Effect::Contact,
+        Effect::Friction,
+        Effect::StrainLimit,
+    ];
 
     /// The C `ps_effect` bit of this effect.
     pub fn bit(self) -> u32 {
@@ -88,6 +101,9 @@ impl Effect {
             Effect::Bending => sys::PS_EFFECT_BENDING,
             Effect::Gravity => sys::PS_EFFECT_GRAVITY,
             Effect::Pressure => sys::PS_EFFECT_PRESSURE,
+            Effect::Contact => sys::PS_EFFECT_CONTACT,
+            Effect::Friction => sys::PS_EFFECT_FRICTION,
+            Effect::StrainLimit => sys::PS_EFFECT_STRAIN_LIMIT,
         }
     }
 }
@@ -228,6 +244,17 @@ pub struct SimulationDef {
     pub thickness: f64,
     /// Volumetric density ρ, kg/m³, in (0, 1e6]; default 200 (`material.density`).
     pub density: f64,
+    /// Coulomb friction coefficient μ in [0, 10]; default 0 (`material.friction`).
+    pub friction: f64,
+    /// Largest membrane stretch, 0 (none) or in (1, 100]; default 0 (`material.strain_limit`).
+    pub strain_limit: f64,
+    /// Contact activation gap d̂, m, in (0, 10]; default 1e-3 (`contact.dhat`).
+    pub contact_dhat: f64,
+    /// Barrier stiffness κ, N/m³, ≥ 0; default 0 = adaptive (`contact.stiffness`).
+    pub contact_stiffness: f64,
+    /// Friction smoothing speed ε_v, m/s, in (0, 1e3]; default 1e-3
+    /// (`contact.friction_velocity`).
+    pub contact_friction_velocity: f64,
     /// Newton stops when ‖p‖∞ / s < tolerance · bounding-box diagonal (s = h for dynamics,
     /// 1 for quasistatics); dimensionless, in (0, 1]; default 1e-5
     /// (`solver.newton_tolerance`).
@@ -270,6 +297,11 @@ impl Default for SimulationDef {
             poisson_ratio: raw.material_poisson_ratio,
             thickness: raw.material_thickness,
             density: raw.material_density,
+            friction: raw.material_friction,
+            strain_limit: raw.material_strain_limit,
+            contact_dhat: raw.contact_dhat,
+            contact_stiffness: raw.contact_stiffness,
+            contact_friction_velocity: raw.contact_friction_velocity,
             newton_tolerance: raw.solver_newton_tolerance,
             max_newton_iterations: raw.solver_max_newton_iterations,
             mode: Mode::from_raw(raw.mode).unwrap_or_default(),
@@ -295,6 +327,11 @@ impl SimulationDef {
         raw.material_poisson_ratio = self.poisson_ratio;
         raw.material_thickness = self.thickness;
         raw.material_density = self.density;
+        raw.material_friction = self.friction;
+        raw.material_strain_limit = self.strain_limit;
+        raw.contact_dhat = self.contact_dhat;
+        raw.contact_stiffness = self.contact_stiffness;
+        raw.contact_friction_velocity = self.contact_friction_velocity;
         raw.solver_newton_tolerance = self.newton_tolerance;
         raw.solver_max_newton_iterations = self.max_newton_iterations;
         raw.mode = self.mode.to_raw();

@@ -1,0 +1,28 @@
+#pragma once
+/// @file Additive continuous collision detection (ACCD; C-IPC, Li, Kaufman & Jiang 2021,
+/// Alg. 1): a conservative time of impact for linear trajectories of a point–triangle or
+/// edge–edge stencil that keeps the pair at least a thickness ξ apart.
+#include "contact/primitive_distance.hpp"
+
+namespace progsim {
+
+/// Largest safe step t ∈ [0, t_max] along x(t) = x + t·dx for a point–triangle stencil
+/// (p, t0, t1, t2) that conservative advancement finds: the distance stays above ξ on [0, t]
+/// and, if t < t_max, is at least ξ + s·(d(x) − ξ) at t. Returns 0 if the pair already is within
+/// the thickness (d(x) ≤ ξ), t_max if there is no relative motion or the advancement reaches
+/// t_max before the gap falls below s·(d(x) − ξ).
+/// A gap d(x) − ξ at rounding level may end at the iteration cap (10⁶ steps) with a tiny t.
+/// @param x stencil positions at t = 0 (12)
+/// @param dx displacement (12)
+/// @param thickness ξ ≥ 0, the distance the pair must never get below
+/// @param s ∈ (0, 1), the fraction of the initial gap d(x) − ξ kept at the returned t (C-IPC
+///        uses 0.1)
+/// @param t_max upper bound on t (usually 1)
+double additive_ccd_point_triangle(const Vec12& x, const Vec12& dx, double thickness, double s,
+                                   double t_max);
+
+/// As additive_ccd_point_triangle() for an edge–edge stencil (ea0, ea1, eb0, eb1).
+double additive_ccd_edge_edge(const Vec12& x, const Vec12& dx, double thickness, double s,
+                              double t_max);
+
+}  // namespace progsim

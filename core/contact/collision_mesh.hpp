@@ -1,0 +1,44 @@
+#pragma once
+/// @file The surfaces contact acts on: the simulated shell, whose vertices are the DOFs, and
+/// the scripted obstacles, whose vertices are not, as one indexed triangle set.
+#include <array>
+#include <vector>
+
+#include "common/types.hpp"
+
+namespace progsim {
+
+/// Collision vertex v < num_shell_vertices is shell vertex v (DOFs 3v..3v+2); the others are
+/// obstacle vertices, whose positions the contact terms hold themselves.
+struct CollisionMesh {
+  int num_shell_vertices = 0;
+  int num_obstacle_vertices = 0;
+  int num_shell_faces = 0;                ///< the first faces are the shell's
+  Faces faces;                            ///< (|F| × 3) collision vertex indices
+  std::vector<std::array<int, 2>> edges;  ///< unique edges (i < j)
+  std::vector<double> vertex_offset;      ///< ξ_v: half the shell thickness, 0 on obstacles (m)
+  std::vector<double> vertex_friction;    ///< μ_v of the surface the vertex belongs to
+  Positions rest;                         ///< (|V| × 3) rest positions (edge–edge mollifier)
+
+  int num_vertices() const { return num_shell_vertices + num_obstacle_vertices; }
+  bool is_obstacle(int v) const { return v >= num_shell_vertices; }
+  /// Largest offset over all vertices (m).
+  double max_offset() const;
+};
+
+/// An obstacle surface to merge into a collision mesh.
+struct ObstacleSurface {
+  const Positions* positions;  ///< (|V| × 3) positions at t = 0
+  const Faces* faces;          ///< (|F| × 3) indices into positions
+  double friction;             ///< μ of its surface
+};
+
+/// Merges the shell (its vertices, in order, are the DOFs) and the obstacles.
+/// @param shell_offset per shell vertex ξ (m), e.g. half the thickness of its body
+/// @param shell_friction per shell vertex μ
+CollisionMesh build_collision_mesh(const Positions& shell_rest, const Faces& shell_faces,
+                                   const std::vector<double>& shell_offset,
+                                   const std::vector<double>& shell_friction,
+                                   const std::vector<ObstacleSurface>& obstacles);
+
+}  // namespace progsim

@@ -1,0 +1,390 @@
+#include "contact/contact_potential.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "common/parallel.hpp"
+#include "common/timer.hpp"
+#include "contact/additive_ccd.hpp"
+#include "contact/barrier.hpp"
+#include "contact/edge_edge_mollifier.hpp"
+#include "energy/psd_projection.hpp"
+
+namespace progsim {
+namespace {
+
+/// ACCD keeps every pair at least this fraction of its current gap apart after a step
+/// (C-IPC Alg. 1, conservative rescaling s).
+constexpr double kCcdRescaling = 0.1;
+/// κ grows when the smallest gap falls below this fraction of d̂ (IPC §4.3).
+constexpr double kSmallGapFraction = 0.01;
+/// Cap on the adaptive growth of κ.
+constexpr double kMaxStiffnessGrowth = 1e8;
+
+}  // namespace
+
+struct ContactPotential::Pair {
+  enum class Kind { vertex_face, edge_edge, ground } kind;
+  std::array<int, 4> vertices;  ///< collision vertex indices; −1 unused (ground)
+  double offset;                ///< ξ = sum of the two sides' offsets (m)
+};
+
+ContactPotential::ContactPotential(CollisionMesh mesh, double dhat, double stiffness,
+                                   std::optional<GroundPlane> ground)
+    : mesh_(std::move(mesh)),
+      dhat_(dhat),
+      stiffness_(stiffness),
+      initial_stiffness_(stiffness),
+      ground_(std::move(ground)) {
+  if (!(dhat > 0.0) || !std::isfinite(dhat))
+    fail(Status::invalid_argument, "contact: d̂ = " + std::to_string(dhat) + " must be > 0");
+  if (!(stiffness > 0.0) || !std::isfinite(stiffness))
+    fail(Status::invalid_argument,
+         "contact: stiffness = " + std::to_string(stiffness) + " must be > 0");
+  obstacle_positions_ = mesh_.rest.bottomRows(mesh_.num_obstacle_vertices);
+}
+
+double ContactPotential::stiffness_for_force(double force, double dhat, double offset) {
+  // Force of κ b(s) on the closest points: 2 d κ |b'(s)| at s = ŝ/2, d = √(ξ² + s).
+  const double s_hat = barrier_activation(offset, dhat);
+  const double s = 0.5 * s_hat;
+  return force /
+         (2.0 * std::sqrt(offset * offset + s) * std::abs(barrier_first_derivative(s, s_hat)));
+}
+
+void ContactPotential::set_obstacle_positions(const Positions& positions) {
+  if (positions.rows() != obstacle_positions_.rows())
+    fail(Status::invalid_argument, "contact: obstacle positions have the wrong size");
+  obstacle_positions_ = positions;
+}
+
+namespace {
+
+Vec12 stencil_positions(const std::array<int, 4>& vertices, const Positions& p) {
+  Vec12 xs = Vec12::Zero();
+  for (int k = 0; k < 4; ++k)
+    if (vertices[k] >= 0) xs.segment<3>(3 * k) = p.row(vertices[k]).transpose();
+  return xs;
+}
+
+}  // namespace
+
+int ContactPotential::num_items() const {
+  return static_cast<int>(candidates_.size()) + (ground_ ? mesh_.num_shell_vertices : 0);
+}
+
+ContactPotential::Pair ContactPotential::pair(int k) const {
+  const int num_vf = static_cast<int>(candidates_.vertex_face.size());
+  const int num_ee = static_cast<int>(candidates_.edge_edge.size());
+  if (k < num_vf) {
+    const auto [v, f] = candidates_.vertex_face[k];
+    const auto face = mesh_.faces.row(f);
+    return {Pair::Kind::vertex_face,
+            {v, face[0], face[1], face[2]},
+            mesh_.vertex_offset[v] + mesh_.vertex_offset[face[0]]};
+  }
+  if (k < num_vf + num_ee) {
+    const auto [a, b] = candidates_.edge_edge[k - num_vf];
+    const auto& ea = mesh_.edges[a];
+    const auto& eb = mesh_.edges[b];
+    return {Pair::Kind::edge_edge,
+            {ea[0], ea[1], eb[0], eb[1]},
+            mesh_.vertex_offset[ea[0]] + mesh_.vertex_offset[eb[0]]};
+  }
+  const int v = k - num_vf - num_ee;
+  return {Pair::Kind::ground, {v, -1, -1, -1}, mesh_.vertex_offset[v]};
+}
+
+double ContactPotential::pair_distance_squared(const Pair& pair, const Vec12& xs,
+                                               ClosestPair* closest) const {
+  if (pair.kind == Pair::Kind::ground) {
+    const double signed_distance = ground_->normal.dot(xs.head<3>()) - ground_->height;
+    return signed_distance > 0.0 ? signed_distance * signed_distance : 0.0;  // below: touching
+  }
+  const ClosestPair c =
+      pair.kind == Pair::Kind::vertex_face ? classify_point_triangle(xs) : classify_edge_edge(xs);
+  if (closest) *closest = c;
+  return distance_squared(xs, c);
+}
+
+void ContactPotential::distance_squared_derivatives_of(const Pair& pair, const Vec12& xs,
+                                                       const ClosestPair& closest, Vec12& grad,
+                                                       Mat12& hess) const {
+  if (pair.kind != Pair::Kind::ground) return distance_squared_derivatives(xs, closest, grad, hess);
+  const Vec3& n = ground_->normal;  // D = (n·x − h)²
+  grad.setZero();
+  hess.setZero();
+  grad.head<3>() = 2.0 * (n.dot(xs.head<3>()) - ground_->height) * n;
+  hess.topLeftCorner<3, 3>() = 2.0 * n * n.transpose();
+}
+
+double ContactPotential::mollifier_threshold_of(const Pair& pair) const {
+  return mollifier_threshold(stencil_positions(pair.vertices, mesh_.rest));
+}
+
+double ContactPotential::pair_energy(const Pair& pair, const Vec12& xs, Vec12* grad,
+                                     Mat12* hess) const {
+  ClosestPair closest{};
+  const double d2 = pair_distance_squared(pair, xs, &closest);
+  const double s = barrier_argument(d2, pair.offset);
+  const double s_hat = barrier_activation(pair.offset, dhat_);
+  if (s <= 0.0) return std::numeric_limits<double>::infinity();
+  if (s >= s_hat) return 0.0;
+  const double b = stiffness_ * barrier(s, s_hat);
+  const bool edge_edge = pair.kind == Pair::Kind::edge_edge;
+  const double eps_x = edge_edge ? mollifier_threshold_of(pair) : 0.0;
+  if (!grad) return edge_edge ? mollifier(xs, eps_x) * b : b;
+  Vec12 gd;
+  Mat12 hd;
+  distance_squared_derivatives_of(pair, xs, closest, gd, hd);
+  const double b1 = stiffness_ * barrier_first_derivative(s, s_hat);
+  const double b2 = stiffness_ * barrier_second_derivative(s, s_hat);
+  *grad = b1 * gd;  // ∇(κb) = κ b' ∇d² (IPC eq. 7 per pair)
+  if (hess) *hess = b2 * gd * gd.transpose() + b1 * hd;
+  if (!edge_edge) return b;
+  double m;
+  Vec12 gm;
+  Mat12 hm;
+  mollifier_derivatives(xs, eps_x, m, gm, hm);  // product rule for m·b (IPC eq. 23)
+  if (hess) *hess = b * hm + gm * grad->transpose() + *grad * gm.transpose() + m * *hess;
+  *grad = b * gm + m * *grad;
+  return m * b;
+}
+
+void ContactPotential::gather_positions(const Vector& x, Positions& out) const {
+  out.resize(mesh_.num_vertices(), 3);
+  out.topRows(mesh_.num_shell_vertices) = as_positions(x);
+  out.bottomRows(mesh_.num_obstacle_vertices) = obstacle_positions_;
+}
+
+double ContactPotential::value(const Vector& x) const {
+  ScopedTimer timer(stats_.assembly_seconds);
+  gather_positions(x, positions_);
+  const int n = num_items();
+  double total = 0.0;
+#pragma omp parallel for reduction(+ : total) schedule(static) if (n >= kMinParallelItems)
+  for (int k = 0; k < n; ++k) {
+    const Pair p = pair(k);
+    total += pair_energy(p, stencil_positions(p.vertices, positions_), nullptr, nullptr);
+  }
+  return total;
+}
+
+std::vector<int> ContactPotential::active_items(const Positions& positions) const {
+  const int n = num_items();
+  std::vector<char> active(n, 0);
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+  for (int k = 0; k < n; ++k) {
+    const Pair p = pair(k);
+    const double d2 = pair_distance_squared(p, stencil_positions(p.vertices, positions), nullptr);
+    active[k] = barrier_argument(d2, p.offset) < barrier_activation(p.offset, dhat_);
+  }
+  std::vector<int> items;
+  for (int k = 0; k < n; ++k)
+    if (active[k]) items.push_back(k);
+  return items;
+}
+
+void ContactPotential::add_gradient(const Vector& x, Vector& g) const {
+  ScopedTimer timer(stats_.assembly_seconds);
+  gather_positions(x, positions_);
+  const std::vector<int> items = active_items(positions_);
+  const int n = static_cast<int>(items.size());
+  std::vector<Vec12> grads(n);
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+  for (int i = 0; i < n; ++i) {
+    const Pair p = pair(items[i]);
+    pair_energy(p, stencil_positions(p.vertices, positions_), &grads[i], nullptr);
+  }
+  for (int i = 0; i < n; ++i) {  // serial scatter: deterministic
+    const Pair p = pair(items[i]);
+    for (int k = 0; k < 4; ++k)
+      if (p.vertices[k] >= 0 && !mesh_.is_obstacle(p.vertices[k]))
+        g.segment<3>(3 * p.vertices[k]) += grads[i].segment<3>(3 * k);
+  }
+}
+
+void ContactPotential::append_hessian_triplets(const Vector& x, bool project,
+                                               std::vector<Eigen::Triplet<double>>& out) const {
+  ScopedTimer timer(stats_.assembly_seconds);
+  gather_positions(x, positions_);
+  const std::vector<int> items = active_items(positions_);
+  const int n = static_cast<int>(items.size());
+  stats_.active_pairs += n;
+  std::vector<Mat12> hessians(n);
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems / 16)
+  for (int i = 0; i < n; ++i) {
+    const Pair p = pair(items[i]);
+    Vec12 grad;
+    pair_energy(p, stencil_positions(p.vertices, positions_), &grad, &hessians[i]);
+    if (project) project_psd(hessians[i]);
+  }
+  for (int i = 0; i < n; ++i) {
+    const Pair p = pair(items[i]);
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        const int va = p.vertices[a], vb = p.vertices[b];
+        if (va < 0 || vb < 0 || mesh_.is_obstacle(va) || mesh_.is_obstacle(vb)) continue;
+        const auto block = hessians[i].block<3, 3>(3 * a, 3 * b);
+        if (block.isZero(0.0)) continue;
+        for (int c = 0; c < 3; ++c)
+          for (int r = 0; r < 3; ++r) out.emplace_back(3 * va + r, 3 * vb + c, block(r, c));
+      }
+  }
+}
+
+void ContactPotential::update_candidates(const Positions& p0, const Positions& p1) {
+  ScopedTimer timer(stats_.broad_phase_seconds);
+  find_candidates(mesh_, p0, p1, dhat_ + 2.0 * mesh_.max_offset(), candidates_);
+  ++stats_.broad_phase_runs;
+  stats_.candidate_pairs += static_cast<std::int64_t>(candidates_.size());
+}
+
+double ContactPotential::min_gap(const Positions& positions, int* closest_item) const {
+  const int n = num_items();
+  double best = std::numeric_limits<double>::infinity();
+  int best_item = -1;
+  for (int k = 0; k < n; ++k) {
+    const Pair p = pair(k);
+    const double gap =
+        std::sqrt(pair_distance_squared(p, stencil_positions(p.vertices, positions), nullptr)) -
+        p.offset;
+    if (gap < best) {
+      best = gap;
+      best_item = k;
+    }
+  }
+  if (closest_item) *closest_item = best_item;
+  return best;
+}
+
+double ContactPotential::ccd(const Positions& p0, const Positions& p1) {
+  ScopedTimer timer(stats_.ccd_seconds);
+  const int n = num_items();
+  stats_.ccd_calls += n;
+  double alpha = 1.0;
+#pragma omp parallel for reduction(min \
+                                   : alpha) schedule(dynamic, 64) if (n >= kMinParallelItems / 16)
+  for (int k = 0; k < n; ++k) {
+    const Pair p = pair(k);
+    const Vec12 xs = stencil_positions(p.vertices, p0);
+    const Vec12 dx = stencil_positions(p.vertices, p1) - xs;
+    double t = 1.0;
+    if (p.kind == Pair::Kind::ground) {
+      const double approach = -ground_->normal.dot(dx.head<3>());
+      const double gap = ground_->normal.dot(xs.head<3>()) - ground_->height - p.offset;
+      if (approach > 0.0) t = std::min(1.0, (1.0 - kCcdRescaling) * gap / approach);
+    } else if (p.kind == Pair::Kind::vertex_face) {
+      t = additive_ccd_point_triangle(xs, dx, p.offset, kCcdRescaling, 1.0);
+    } else {
+      t = additive_ccd_edge_edge(xs, dx, p.offset, kCcdRescaling, 1.0);
+    }
+    alpha = std::min(alpha, t);
+  }
+  return alpha;
+}
+
+void ContactPotential::begin_solve(const Vector& x) {
+  gather_positions(x, positions_);
+  update_candidates(positions_, positions_);
+  last_min_gap_ = min_gap(positions_, nullptr);
+  stats_.min_gap = std::min(stats_.min_gap, last_min_gap_);
+}
+
+double ContactPotential::max_step(const Vector& x, const Vector& p) {
+  gather_positions(x, positions_);
+  moved_ = x + p;
+  gather_positions(moved_, trial_positions_);
+  update_candidates(positions_, trial_positions_);
+  return ccd(positions_, trial_positions_);
+}
+
+double ContactPotential::max_scripted_step(const Vector& x, const Vector& p,
+                                           const Positions& obstacle_target) {
+  gather_positions(x, positions_);
+  moved_ = x + p;
+  gather_positions(moved_, trial_positions_);
+  trial_positions_.bottomRows(mesh_.num_obstacle_vertices) = obstacle_target;
+  update_candidates(positions_, trial_positions_);
+  return ccd(positions_, trial_positions_);
+}
+
+bool ContactPotential::end_iteration(const Vector& x) {
+  gather_positions(x, positions_);
+  const double gap = min_gap(positions_, nullptr);
+  stats_.min_gap = std::min(stats_.min_gap, gap);
+  const bool grow = gap < kSmallGapFraction * dhat_ && gap < last_min_gap_ &&
+                    stiffness_ < kMaxStiffnessGrowth * initial_stiffness_;
+  last_min_gap_ = gap;
+  if (!grow) return false;
+  stiffness_ *= 2.0;  // IPC §4.3: stiffen while a gap keeps closing
+  ++stats_.stiffness_updates;
+  return true;
+}
+
+std::string ContactPotential::describe(int item) const {
+  const Pair p = pair(item);
+  auto vertex = [&](int v) {
+    return mesh_.is_obstacle(v) ? "obstacle vertex " + std::to_string(v - mesh_.num_shell_vertices)
+                                : "shell vertex " + std::to_string(v);
+  };
+  if (p.kind == Pair::Kind::ground) return vertex(p.vertices[0]) + " and the ground";
+  if (p.kind == Pair::Kind::edge_edge)
+    return "edge (" + vertex(p.vertices[0]) + ", " + vertex(p.vertices[1]) + ") and edge (" +
+           vertex(p.vertices[2]) + ", " + vertex(p.vertices[3]) + ")";
+  const int f = candidates_.vertex_face[item][1];
+  const std::string face = f < mesh_.num_shell_faces
+                               ? "shell face " + std::to_string(f)
+                               : "obstacle face " + std::to_string(f - mesh_.num_shell_faces);
+  return vertex(p.vertices[0]) + " and " + face;
+}
+
+void ContactPotential::check_separated(const Vector& x) {
+  gather_positions(x, positions_);
+  update_candidates(positions_, positions_);
+  int item = -1;
+  const double gap = min_gap(positions_, &item);
+  if (gap > 0.0) return;
+  std::ostringstream message;
+  message << "the configuration intersects or touches: " << describe(item) << " are "
+          << gap + pair(item).offset << " m apart, not more than their contact offset "
+          << pair(item).offset << " m";
+  fail(Status::intersecting, message.str());
+}
+
+std::vector<ContactPoint> ContactPotential::contact_points(const Vector& x) const {
+  gather_positions(x, positions_);
+  std::vector<ContactPoint> points;
+  for (int k : active_items(positions_)) {
+    const Pair p = pair(k);
+    const Vec12 xs = stencil_positions(p.vertices, positions_);
+    const int other = p.kind == Pair::Kind::edge_edge ? 2 : 1;
+    const double mu_other =
+        p.kind == Pair::Kind::ground ? ground_->friction : mesh_.vertex_friction[p.vertices[other]];
+    const double mu = std::sqrt(mesh_.vertex_friction[p.vertices[0]] * mu_other);  // Box2D mix
+    if (!(mu > 0.0)) continue;
+    ContactPoint c{p.vertices, Eigen::Vector4d(1, 0, 0, 0), ground_ ? ground_->normal : Vec3(), 0.0,
+                   mu};
+    ClosestPair closest{};
+    const double d2 = pair_distance_squared(p, xs, &closest);
+    if (p.kind != Pair::Kind::ground) {
+      c.weights = closest_point_weights(xs, closest);
+      Vec3 r = Vec3::Zero();
+      for (int j = 0; j < 4; ++j) r += c.weights[j] * xs.segment<3>(3 * j);
+      c.normal = r.normalized();
+    }
+    const double s = barrier_argument(d2, p.offset);
+    const double s_hat = barrier_activation(p.offset, dhat_);
+    const double m =
+        p.kind == Pair::Kind::edge_edge ? mollifier(xs, mollifier_threshold_of(p)) : 1.0;
+    // λ = ‖∂(κ m b)/∂r‖ = 2 κ m |b'(s)| d (IPC §5, lagged normal force)
+    c.normal_force =
+        2.0 * stiffness_ * m * std::abs(barrier_first_derivative(s, s_hat)) * std::sqrt(d2);
+    points.push_back(c);
+  }
+  return points;
+}
+
+}  // namespace progsim

@@ -1,0 +1,124 @@
+#pragma once
+/// @file The IPC contact barrier over every primitive pair closer than d̂, with CCD bounding
+/// every step so that no accepted configuration ever intersects (IPC, Li et al. 2020, §4;
+/// codimensional offsets and additive CCD of C-IPC, Li et al. 2021, §4).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact/broad_phase.hpp"
+#include "contact/collision_mesh.hpp"
+#include "contact/contact_stats.hpp"
+#include "contact/primitive_distance.hpp"
+#include "energy/energy_term.hpp"
+#include "solve/step_filter.hpp"
+
+namespace progsim {
+
+/// An analytic ground for contact: the half-space normal·x ≥ height.
+struct GroundPlane {
+  Vec3 normal = Vec3::UnitY();  ///< unit
+  double height = 0.0;          ///< m
+  double friction = 0.0;        ///< μ
+};
+
+/// One active contact, as friction needs it (IPC §5): the 4 stencil vertices (−1 unused), the
+/// weights w with r = Σ w_k x_k the vector between the closest points, the unit normal r/‖r‖,
+/// the normal force magnitude λ (N) and the pair's μ.
+struct ContactPoint {
+  std::array<int, 4> vertices;
+  Eigen::Vector4d weights;
+  Vec3 normal;
+  double normal_force;
+  double friction;
+};
+
+/// B(x) = κ Σ_k m_k b(d_k² − ξ_k², ŝ_k) over vertex–face, edge–edge and vertex–ground pairs
+/// with gap d_k − ξ_k < d̂ (IPC eq. 7; m_k the edge–edge mollifier, eq. 23; ξ_k the sum of
+/// the two sides' offsets, C-IPC §4). value() is +∞ if a pair is at or inside its offset.
+/// As a StepFilter it bounds every Newton step with additive CCD (C-IPC Alg. 1) and keeps the
+/// candidate set of the segment it cleared; its Hessian pattern changes with the pairs.
+class ContactPotential : public EnergyTerm, public StepFilter {
+ public:
+  /// @param mesh shell (DOFs) + obstacles
+  /// @param dhat activation gap d̂ (m), > 0
+  /// @param stiffness κ (N/m³), > 0
+  /// @param ground nullable: the analytic ground
+  ContactPotential(CollisionMesh mesh, double dhat, double stiffness,
+                   std::optional<GroundPlane> ground);
+
+  const char* name() const override { return "contact"; }
+  double value(const Vector& x) const override;
+  void add_gradient(const Vector& x, Vector& g) const override;
+  std::size_t hessian_entry_count() const override { return 0; }
+  void hessian_pattern(int*, int*) const override {}
+  void hessian_values(const Vector&, bool, double*) const override {}
+  bool has_fixed_pattern() const override { return false; }
+  void append_hessian_triplets(const Vector& x, bool project_psd,
+                               std::vector<Eigen::Triplet<double>>& out) const override;
+
+  void begin_solve(const Vector& x) override;
+  double max_step(const Vector& x, const Vector& p) override;
+  /// Grows κ ×2 (IPC §4.3 adaptive stiffness) when the smallest gap is below 1% of d̂ and
+  /// still shrinking; returns true then.
+  bool end_iteration(const Vector& x) override;
+
+  /// The largest α ∈ [0, 1] for which shell DOFs moving by α·p and obstacles moving linearly
+  /// from their current positions toward `obstacle_target` (|V_obstacle| × 3) stay apart
+  /// (used to advance scripted handles and obstacles).
+  double max_scripted_step(const Vector& x, const Vector& p, const Positions& obstacle_target);
+  /// Moves the obstacles (|V_obstacle| × 3).
+  void set_obstacle_positions(const Positions& positions);
+  const Positions& obstacle_positions() const { return obstacle_positions_; }
+
+  /// Throws Error(intersecting) naming the closest pair if any pair of x is at or inside its
+  /// contact offset (a scene that starts intersecting or touching).
+  void check_separated(const Vector& x);
+  /// The active contacts at x (for lagged friction).
+  std::vector<ContactPoint> contact_points(const Vector& x) const;
+
+  double dhat() const { return dhat_; }
+  double stiffness() const { return stiffness_; }
+  void set_stiffness(double kappa) { stiffness_ = kappa; }
+  const CollisionMesh& mesh() const { return mesh_; }
+  const ContactStats& stats() const { return stats_; }
+  /// Starts a new min_gap record (e.g. per step).
+  void reset_min_gap() { stats_.min_gap = std::numeric_limits<double>::infinity(); }
+
+  /// The κ at which a pair at half the activation gap (offset ξ) pushes with `force` (N).
+  static double stiffness_for_force(double force, double dhat, double offset);
+
+ private:
+  struct Pair;
+  /// Items are the vertex–face candidates, then the edge–edge ones, then (with a ground)
+  /// every shell vertex against the ground.
+  int num_items() const;
+  Pair pair(int item) const;
+  double pair_distance_squared(const Pair& pair, const Vec12& xs, ClosestPair* closest) const;
+  void distance_squared_derivatives_of(const Pair& pair, const Vec12& xs,
+                                       const ClosestPair& closest, Vec12& grad, Mat12& hess) const;
+  double mollifier_threshold_of(const Pair& pair) const;
+  /// κ m b of one pair at stencil positions xs; gradient and Hessian when non-null.
+  double pair_energy(const Pair& pair, const Vec12& xs, Vec12* grad, Mat12* hess) const;
+  std::vector<int> active_items(const Positions& positions) const;
+  /// Positions of every collision vertex: shell from x, obstacles from obstacle_positions_.
+  void gather_positions(const Vector& x, Positions& out) const;
+  void update_candidates(const Positions& p0, const Positions& p1);
+  double ccd(const Positions& p0, const Positions& p1);
+  double min_gap(const Positions& positions, int* closest_item) const;
+  std::string describe(int item) const;
+
+  CollisionMesh mesh_;
+  double dhat_;
+  double stiffness_;
+  double initial_stiffness_;
+  std::optional<GroundPlane> ground_;
+  Positions obstacle_positions_;
+  CandidateSet candidates_;
+  double last_min_gap_ = std::numeric_limits<double>::infinity();
+  mutable ContactStats stats_;
+  mutable Positions positions_, trial_positions_;
+  Vector moved_;
+};
+
+}  // namespace progsim

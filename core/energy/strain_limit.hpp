@@ -1,0 +1,91 @@
+#pragma once
+/// @file Strain-limiting barrier on the membrane singular values of a triangle mesh (C-IPC,
+/// Li et al. 2021, §5 "strain limiting").
+#include <vector>
+
+#include "energy/stencil_term.hpp"
+
+namespace progsim {
+
+/// Strain-limiting barrier of a triangle mesh (C-IPC, Li, Kaufman & Jiang 2021, §5):
+///   E(x) = Σ_f Ā_f κ Σ_{i=1,2} b(s_f − σ_i,f, ŝ),
+///   b(d, d̂) = −(d − d̂)² ln(d/d̂) for 0 < d < d̂,  0 for d ≥ d̂,  +∞ for d ≤ 0,
+/// where σ₁ ≥ σ₂ are the singular values of the membrane deformation gradient F = D D̄⁻¹ (3×2)
+/// of face f (D = [x1−x0, x2−x0], D̄ the rest edges in a 2D frame of the rest triangle, as in
+/// NeoHookeanMembrane), s_f > 1 the face's strain limit, ŝ the activation band (the barrier acts
+/// once σ > s_f − ŝ) and κ the stiffness (Pa·m, energy per rest area).
+///
+/// Values: a face with σ₁ ≥ s_f has infinite energy, so value() is +∞ (a line search rejects
+/// the step); the gradient and Hessian blocks of such a face are quiet NaN (as for a degenerate
+/// triangle in NeoHookeanMembrane). Faces with σ₁ ≤ s_f − ŝ contribute exactly zero value,
+/// gradient and Hessian (early out). b is C² at d = d̂, so E is C² everywhere it is finite.
+///
+/// Derivatives: Σ_i b(s − σ_i) = Σ_i g(λ_i) is a spectral function of C = FᵀF (λ_i = σ_i²),
+/// smooth also at σ₁ = σ₂. ∂/∂C = V diag(g'(λ_i)) Vᵀ (Lewis 1996, "Derivatives of spectral
+/// functions"); the second derivative is the divided-difference (Daleckii–Krein) form
+/// (Lewis & Sendov 2001, "Twice differentiable spectral functions"), with the divided
+/// difference [g'(λ₁) − g'(λ₂)]/(λ₁ − λ₂) replaced by the mean of g''(λ₁), g''(λ₂) when
+/// σ₁ − σ₂ is tiny relative to the distance to the limit, so there is no 0/0 at σ₁ = σ₂.
+///
+/// PSD: h(σ) = b(s − σ) is convex and non-decreasing in σ, zero below s − ŝ > 0, so the energy
+/// is a convex function of F (Lewis 1995, convex unitarily invariant functions), hence of x
+/// (F is linear in x). The exact element Hessian is therefore PSD, and the projected Hessian is
+/// the exact one (no eigen-decomposition; PSD up to rounding).
+class StrainLimit : public StencilTerm<3> {
+ public:
+  /// @param rest rest positions (|V| × 3), m
+  /// @param faces triangles (|F| × 3), indices into rest
+  /// @param face_limits strain limit s_f > 1 of each face (|F|), e.g. 1.06
+  /// @param band activation band ŝ, 0 < ŝ < s_f − 1 for every face
+  /// @param stiffness κ > 0, Pa·m
+  /// @throws Error(invalid_argument) if face_limits.size() ≠ |F|, a limit is not > 1, the band
+  ///         is out of range or the stiffness is not > 0 (or any of them is non-finite);
+  ///         Error(invalid_mesh) if a face index is out of range or a rest triangle has zero
+  ///         (or non-finite) area.
+  StrainLimit(const Positions& rest, const Faces& faces, std::vector<double> face_limits,
+              double band, double stiffness);
+
+  const char* name() const override { return "strain_limit"; }
+
+  /// Largest singular value σ₁ of F over all faces at x (3|V|); 0 for a mesh without faces.
+  /// @throws Error(invalid_argument) if x.size() ≠ 3|V|.
+  double max_stretch(const Vector& x) const;
+
+  /// κ (Pa·m).
+  double stiffness() const { return stiffness_; }
+  /// Sets κ. Not thread-safe with a concurrent evaluation.
+  /// @throws Error(invalid_argument) unless stiffness > 0 and finite.
+  void set_stiffness(double stiffness);
+
+  /// ŝ.
+  double band() const { return band_; }
+  /// s_f of face f.
+  double limit(int f) const { return elements_[f].limit; }
+  /// Rest area Ā of face f (m²).
+  double rest_area(int f) const { return elements_[f].area; }
+
+ protected:
+  double element_value(int e, const LocalVector& xe) const override;
+  void element_gradient(int e, const LocalVector& xe, LocalVector& g) const override;
+  void element_hessian(int e, const LocalVector& xe, LocalMatrix& h) const override;
+  /// The exact Hessian, which is PSD (see the class comment).
+  void element_projected_hessian(int e, const LocalVector& xe, LocalMatrix& h) const override;
+
+ private:
+  /// Per-face constants. F = Σ_a x_a β_aᵀ (3×2), β_a the rows of `beta`.
+  struct Element {
+    Eigen::Matrix<double, 3, 2> beta;  ///< ∂F/∂x_a = I₃ ⊗ β_aᵀ; rows sum to zero
+    double area;                       ///< Ā (m²)
+    double limit;                      ///< s_f
+  };
+
+  /// F (3×2) of element e at positions xe.
+  Eigen::Matrix<double, 3, 2> deformation_gradient(int e, const LocalVector& xe) const;
+
+  std::vector<Element> elements_;
+  double band_;
+  double stiffness_;
+  int num_vertices_;
+};
+
+}  // namespace progsim

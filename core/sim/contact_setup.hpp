@@ -1,0 +1,33 @@
+#pragma once
+/// @file Builds the contact, friction and strain-limit terms a scene enables, with their
+/// parameters chosen from the scene (C-IPC, Li et al. 2021, §4–5; IPC, Li et al. 2020, §4.3).
+#include <memory>
+
+#include "contact/contact_potential.hpp"
+#include "contact/friction_potential.hpp"
+#include "energy/strain_limit.hpp"
+#include "scene/scene.hpp"
+#include "sim/obstacle_script.hpp"
+#include "sim/shell_model.hpp"
+
+namespace progsim {
+
+/// The contact barrier over the shell, the obstacles and the ground. Each shell vertex gets the
+/// offset ξ = t/2 of its body (C-IPC codimensional thickness), obstacles 0. κ is the scene's
+/// contact.stiffness, or (0) the stiffness at which a pair at half the gap d̂ resists the
+/// largest of: a vertex's weight, the force that stops it within d̂ in one step (dynamics),
+/// and the membrane force E t d̂. Then it grows adaptively.
+std::unique_ptr<ContactPotential> make_contact_potential(const Scene& scene,
+                                                         const ShellModel& model,
+                                                         const ObstacleScript& obstacles);
+
+/// Friction over the contact's pairs with slip threshold ε_v h, or nullptr when the shell's
+/// μ is 0 everywhere (every pair then mixes to μ = 0, and friction costs nothing).
+std::unique_ptr<FrictionPotential> make_friction_potential(const Scene& scene,
+                                                           const ContactPotential& contact);
+
+/// The strain-limit barrier over the faces whose material has a strain limit, or nullptr if
+/// none has. Band ŝ = half the smallest (s_max − 1); κ = the largest E t (energy per area).
+std::unique_ptr<StrainLimit> make_strain_limit(const ShellModel& model);
+
+}  // namespace progsim

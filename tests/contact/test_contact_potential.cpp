@@ -1,0 +1,238 @@
+// The contact barrier and lagged friction as energy terms: gradients and Hessians against
+// finite differences on two-triangle configurations of every distance type (including nearly
+// parallel edges and a point near an edge), with and without thickness offsets; the ground;
+// PSD projection; +∞ inside the offset; and the broad phase against brute force.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "common/error.hpp"
+#include "contact/broad_phase.hpp"
+#include "contact/contact_potential.hpp"
+#include "contact/friction_potential.hpp"
+#include "mesh/mesh_generators.hpp"
+#include "support/energy_checks.hpp"
+
+using namespace progsim;
+namespace pt = progsim::test_support;
+
+namespace {
+
+constexpr double kDhat = 1e-2;
+
+/// Two separate triangles: A = (0, 1, 2) in the plane z = 0, B = (3, 4, 5) given.
+struct TwoTriangles {
+  Positions x;
+  Faces faces;
+};
+
+TwoTriangles two_triangles(const Vec3& b0, const Vec3& b1, const Vec3& b2) {
+  TwoTriangles t;
+  t.x.resize(6, 3);
+  t.x << 0, 0, 0, 1, 0, 0, 0, 1, 0, b0.transpose(), b1.transpose(), b2.transpose();
+  t.faces.resize(2, 3);
+  t.faces << 0, 1, 2, 3, 4, 5;
+  return t;
+}
+
+ContactPotential make_contact(const TwoTriangles& t, double offset,
+                              std::optional<GroundPlane> ground = std::nullopt) {
+  return ContactPotential(build_collision_mesh(t.x, t.faces, std::vector<double>(6, offset),
+                                               std::vector<double>(6, 0.5), {}),
+                          kDhat, 3.0, ground);
+}
+
+/// The configurations: name and triangle B (A is fixed in z = 0).
+std::vector<std::pair<std::string, TwoTriangles>> configurations(double gap) {
+  return {
+      // vertex 3 above A's interior: point–triangle
+      {"point_triangle", two_triangles({0.3, 0.3, gap}, {0.5, 0.3, 0.5}, {0.3, 0.6, 0.5})},
+      // vertex 3 just outside A's hypotenuse, slightly above: point–edge
+      {"point_edge", two_triangles({0.5025, 0.5025, gap}, {1.0, 1.0, 0.4}, {0.6, 1.2, 0.3})},
+      // edge (3, 4) crossing over A's edge (0, 1) at right angles: edge–edge
+      {"edge_edge", two_triangles({0.5, -0.3, gap}, {0.5, 0.3, gap}, {0.5, 0.0, 0.6})},
+      // edge (3, 4) nearly parallel to A's edge (0, 1) and above it: mollified edge–edge
+      {"parallel_edges", two_triangles({0.2, -1e-3, gap}, {0.8, 1e-3, gap}, {0.5, -0.2, 0.5})},
+  };
+}
+
+void expect_matches_finite_differences(EnergyTerm& term, const Vector& x, double step) {
+  const Vector g = pt::analytic_gradient(term, x);
+  const Vector g_fd = pt::finite_difference_gradient(term, x, step);
+  EXPECT_LT(pt::relative_error(g, g_fd, 1e-9), 1e-5) << "gradient";
+  const Eigen::MatrixXd h = pt::assembled_hessian(term, x, false);
+  const Eigen::MatrixXd h_fd = pt::finite_difference_hessian(term, x, step);
+  EXPECT_LT(pt::relative_error(h, h_fd, 1e-9), 1e-4) << "Hessian";
+}
+
+}  // namespace
+
+TEST(ContactPotential, DerivativesMatchFiniteDifferencesForEveryDistanceType) {
+  for (double offset : {0.0, 2e-3}) {
+    for (auto& [name, t] : configurations(2.0 * offset + 0.4 * kDhat)) {
+      SCOPED_TRACE(name + " offset " + std::to_string(offset));
+      ContactPotential contact = make_contact(t, offset);
+      const Vector x = as_dofs(t.x);
+      contact.begin_solve(x);
+      ASSERT_GT(contact.value(x), 0.0) << "the pair must be inside the barrier's range";
+      expect_matches_finite_differences(contact, x, 1e-8);
+    }
+  }
+}
+
+TEST(ContactPotential, NearlyParallelEdgesAreMollifiedSmoothly) {
+  // The mollifier scales the parallel pair's barrier down; its derivatives stay finite.
+  auto configs = configurations(0.4 * kDhat);
+  ContactPotential parallel = make_contact(configs[3].second, 0.0);
+  const Vector x = as_dofs(configs[3].second.x);
+  parallel.begin_solve(x);
+  const Vector g = pt::analytic_gradient(parallel, x);
+  EXPECT_TRUE(g.allFinite());
+  EXPECT_TRUE(pt::assembled_hessian(parallel, x, false).allFinite());
+}
+
+TEST(ContactPotential, GroundBarrierDerivativesAndCcd) {
+  TwoTriangles t = two_triangles({0.3, 0.3, 0.5}, {0.5, 0.3, 0.5}, {0.3, 0.6, 0.5});
+  t.x.col(2).head(3).setConstant(0.3 * kDhat);  // triangle A hovering over the ground z = 0
+  t.x(1, 2) = 0.7 * kDhat;
+  ContactPotential contact = make_contact(t, 0.0, GroundPlane{Vec3::UnitZ(), 0.0, 0.2});
+  const Vector x = as_dofs(t.x);
+  contact.begin_solve(x);
+  ASSERT_GT(contact.value(x), 0.0);
+  expect_matches_finite_differences(contact, x, 1e-9);
+  // Moving everything 1 m down: CCD stops before the ground, keeping ≥ 10% of the gap.
+  Vector down = Vector::Zero(x.size());
+  for (int v = 0; v < 6; ++v) down[3 * v + 2] = -1.0;
+  const double alpha = contact.max_step(x, down);
+  EXPECT_GT(alpha, 0.0);
+  EXPECT_LE(alpha, 0.9 * 0.3 * kDhat + 1e-15);
+  EXPECT_TRUE(std::isfinite(contact.value(x + alpha * down)));
+}
+
+TEST(ContactPotential, InfiniteInsideTheOffsetAndZeroBeyondTheGap) {
+  auto configs = configurations(0.0);
+  TwoTriangles touching = configs[0].second;
+  touching.x(3, 2) = 1e-3;  // vertex 3 is 1 mm above A, inside a 2 + 2 mm offset
+  ContactPotential thick = make_contact(touching, 2e-3);
+  const Vector x = as_dofs(touching.x);
+  thick.begin_solve(x);
+  EXPECT_EQ(thick.value(x), std::numeric_limits<double>::infinity());
+  EXPECT_THROW(thick.check_separated(x), Error);
+  TwoTriangles apart = configs[0].second;
+  apart.x(3, 2) = 2.0 * kDhat;
+  ContactPotential thin = make_contact(apart, 0.0);
+  thin.begin_solve(as_dofs(apart.x));
+  EXPECT_EQ(thin.value(as_dofs(apart.x)), 0.0);
+  EXPECT_NO_THROW(thin.check_separated(as_dofs(apart.x)));
+}
+
+TEST(ContactPotential, ProjectedHessianIsPositiveSemidefinite) {
+  for (auto& [name, t] : configurations(0.2 * kDhat)) {
+    SCOPED_TRACE(name);
+    ContactPotential contact = make_contact(t, 0.0);
+    const Vector x = as_dofs(t.x);
+    contact.begin_solve(x);
+    const Eigen::MatrixXd h = pt::assembled_hessian(contact, x, true);
+    EXPECT_GT(pt::eigenvalues(h).minCoeff(), -1e-9 * h.cwiseAbs().maxCoeff());
+  }
+}
+
+TEST(ContactPotential, RejectsNonsenseParameters) {
+  const TwoTriangles t = configurations(0.5)[0].second;
+  auto mesh = build_collision_mesh(t.x, t.faces, std::vector<double>(6, 0.0),
+                                   std::vector<double>(6, 0.0), {});
+  EXPECT_THROW(ContactPotential(mesh, 0.0, 1.0, std::nullopt), Error);
+  EXPECT_THROW(ContactPotential(mesh, -1.0, 1.0, std::nullopt), Error);
+  EXPECT_THROW(ContactPotential(mesh, 1e-3, 0.0, std::nullopt), Error);
+  EXPECT_THROW(ContactPotential(mesh, std::nan(""), 1.0, std::nullopt), Error);
+}
+
+TEST(FrictionPotential, DerivativesMatchFiniteDifferencesSlidingAndSticking) {
+  for (auto& [name, t] : configurations(0.4 * kDhat)) {
+    ContactPotential contact = make_contact(t, 0.0);
+    const Vector x0 = as_dofs(t.x);
+    contact.begin_solve(x0);
+    const double epsilon = 1e-4;
+    FrictionPotential friction(contact, epsilon);
+    friction.lag(x0);
+    ASSERT_GT(friction.num_contacts(), 0) << name;
+    for (double slip : {0.3 * epsilon, 20.0 * epsilon}) {  // smoothed (static) and sliding
+      SCOPED_TRACE(name + " slip " + std::to_string(slip));
+      Vector x = x0;
+      for (int v = 3; v < 6; ++v) x.segment<3>(3 * v) += slip * Vec3(0.8, 0.6, 0.0);
+      expect_matches_finite_differences(friction, x, 1e-3 * epsilon);
+      const Eigen::MatrixXd h = pt::assembled_hessian(friction, x, false);
+      EXPECT_GT(pt::eigenvalues(h).minCoeff(), -1e-9 * h.cwiseAbs().maxCoeff()) << "PSD";
+    }
+  }
+}
+
+TEST(FrictionPotential, SlidingForceIsCoulombsMuTimesTheNormalForce) {
+  // A vertex over the ground slides by much more than ε: |friction force| = μ λ, opposing it.
+  TwoTriangles t = configurations(0.5)[0].second;  // B far above A
+  t.x.col(2).head(3).setConstant(0.5 * kDhat);
+  ContactPotential contact = make_contact(t, 0.0, GroundPlane{Vec3::UnitZ(), 0.0, 0.5});
+  const Vector x0 = as_dofs(t.x);
+  contact.begin_solve(x0);
+  FrictionPotential friction(contact, 1e-6);
+  friction.lag(x0);
+  ASSERT_EQ(friction.num_contacts(), 3);
+  Vector x = x0;
+  for (int v = 0; v < 3; ++v) x[3 * v] += 1e-3;  // slide triangle A along +x
+  Vector g = Vector::Zero(x.size());
+  friction.add_gradient(x, g);
+  // μ = √(0.5 · 0.5); λ from the barrier: 2 κ |b'(s)| d at d = 0.5 d̂.
+  Vector barrier_gradient = Vector::Zero(x.size());
+  contact.add_gradient(x0, barrier_gradient);
+  for (int v = 0; v < 3; ++v) {
+    const double normal_force = std::abs(barrier_gradient[3 * v + 2]);
+    EXPECT_NEAR(g[3 * v], 0.5 * normal_force, 1e-9 * normal_force) << "vertex " << v;
+    EXPECT_NEAR(g[3 * v + 1], 0.0, 1e-12);
+  }
+}
+
+TEST(BroadPhase, FindsEveryPairWithinTheGapLikeBruteForce) {
+  // A crumpled sheet: every vertex–face and edge–edge pair whose boxes overlap, by brute force.
+  TriangleMesh sheet = make_grid(1.0, 1.0, 8, 8);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> noise(-0.08, 0.08);
+  for (Eigen::Index i = 0; i < sheet.vertices.rows(); ++i)
+    sheet.vertices(i, 2) = noise(rng) + 0.3 * std::sin(6.0 * sheet.vertices(i, 0));
+  const auto mesh = build_collision_mesh(sheet.vertices, sheet.faces,
+                                         std::vector<double>(sheet.num_vertices(), 0.0),
+                                         std::vector<double>(sheet.num_vertices(), 0.0), {});
+  CandidateSet found;
+  const double inflation = 0.05;
+  find_candidates(mesh, mesh.rest, mesh.rest, inflation, found);
+  auto box_gap = [&](std::initializer_list<int> a, std::initializer_list<int> b) {
+    double gap = 0.0;  // largest per-axis separation of the two primitives' boxes
+    for (int k = 0; k < 3; ++k) {
+      double alo = 1e9, ahi = -1e9, blo = 1e9, bhi = -1e9;
+      for (int v : a) alo = std::min(alo, mesh.rest(v, k)), ahi = std::max(ahi, mesh.rest(v, k));
+      for (int v : b) blo = std::min(blo, mesh.rest(v, k)), bhi = std::max(bhi, mesh.rest(v, k));
+      gap = std::max(gap, std::max(blo - ahi, alo - bhi));
+    }
+    return gap;
+  };
+  std::size_t expected_vf = 0, expected_ee = 0;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    for (int f = 0; f < mesh.faces.rows(); ++f) {
+      const auto face = mesh.faces.row(f);
+      if (face[0] == v || face[1] == v || face[2] == v) continue;
+      if (box_gap({v}, {face[0], face[1], face[2]}) > inflation) continue;
+      ++expected_vf;
+      EXPECT_TRUE(std::binary_search(found.vertex_face.begin(), found.vertex_face.end(),
+                                     std::array<int, 2>{v, f}));
+    }
+  for (std::size_t a = 0; a < mesh.edges.size(); ++a)
+    for (std::size_t b = a + 1; b < mesh.edges.size(); ++b) {
+      const auto& ea = mesh.edges[a];
+      const auto& eb = mesh.edges[b];
+      if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
+      if (box_gap({ea[0], ea[1]}, {eb[0], eb[1]}) > inflation) continue;
+      ++expected_ee;
+    }
+  EXPECT_EQ(found.vertex_face.size(), expected_vf);
+  EXPECT_EQ(found.edge_edge.size(), expected_ee);
+  EXPECT_GT(expected_ee, 0u);
+}
