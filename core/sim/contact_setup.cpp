@@ -1,6 +1,7 @@
 #include "sim/contact_setup.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace progsim {
 namespace {
@@ -30,8 +31,10 @@ double reference_force(const Scene& scene, const ShellModel& model) {
   double force = mass * scene.gravity.norm();
   if (scene.mode == StepMode::dynamic)
     force = std::max(force, mass * scene.contact.dhat / (scene.time_step * scene.time_step));
-  for (const ShellMaterial& m : model.face_materials)
-    force = std::max(force, m.youngs_modulus * m.thickness * scene.contact.dhat);
+  const double edge = bounding_box_diagonal(model.rest.vertices) /
+                      std::sqrt(static_cast<double>(model.rest.num_vertices()));
+  for (const ShellMaterial& m : model.face_materials)  // stretching an edge by 0.1%
+    force = std::max(force, 1e-3 * m.youngs_modulus * m.thickness * edge);
   return force;
 }
 

@@ -16,7 +16,8 @@ namespace progsim {
 /// offset ξ = t/2 of its body (C-IPC codimensional thickness), obstacles 0. κ is the scene's
 /// contact.stiffness, or (0) the stiffness at which a pair at half the gap d̂ resists the
 /// largest of: a vertex's weight, the force that stops it within d̂ in one step (dynamics),
-/// and the membrane force E t d̂. Then it grows adaptively.
+/// and the force that stretches a typical edge by 0.1%. A small start keeps pairs that begin
+/// inside d̂ from being kicked apart; κ then grows adaptively where gaps close (IPC §4.3).
 std::unique_ptr<ContactPotential> make_contact_potential(const Scene& scene,
                                                          const ShellModel& model,
                                                          const ObstacleScript& obstacles);
