@@ -1,6 +1,8 @@
 #include "contact/broad_phase.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "common/parallel.hpp"
@@ -11,6 +13,8 @@ namespace {
 struct Box {
   Vec3 lo, hi;
 };
+
+using Key = std::uint64_t;
 
 bool overlap(const Box& a, const Box& b) {
   return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
@@ -40,29 +44,100 @@ std::vector<Box> boxes(int count, IndexOf index_of, const Positions& p0, const P
   return out;
 }
 
-/// Targets sorted by their lower bound along one axis, for range queries.
-struct SortedTargets {
-  std::vector<int> order;
-  std::vector<double> lo;
-  double max_width = 0.0;
+/// A uniform grid over boxes (a spatial hash with sorted keys): each box is listed in every
+/// cell it overlaps; boxes spanning more than kMaxCells cells are kept apart as "large".
+class BoxGrid {
+ public:
+  static constexpr long kMaxCells = 64;
 
-  SortedTargets(const std::vector<Box>& targets, int axis) : order(targets.size()) {
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-    std::sort(order.begin(), order.end(),
-              [&](int a, int b) { return targets[a].lo[axis] < targets[b].lo[axis]; });
-    lo.reserve(order.size());
-    for (int t : order) {
-      lo.push_back(targets[t].lo[axis]);
-      max_width = std::max(max_width, targets[t].hi[axis] - targets[t].lo[axis]);
+  BoxGrid(const std::vector<Box>& boxes, double cell) : inverse_cell_(1.0 / cell) {
+    const int n = static_cast<int>(boxes.size());
+    std::vector<long> offsets(n + 1, 0);
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+    for (int i = 0; i < n; ++i) {
+      const long c = cell_count(boxes[i]);
+      offsets[i + 1] = c <= kMaxCells ? c : 0;
     }
+    for (int i = 0; i < n; ++i) {
+      if (is_large(boxes[i])) large_.push_back(i);
+      offsets[i + 1] += offsets[i];
+    }
+    entries_.resize(offsets[n]);
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+    for (int i = 0; i < n; ++i) {
+      long k = offsets[i];
+      if (offsets[i + 1] > k) for_each_cell(boxes[i], [&](Key key) { entries_[k++] = {key, i}; });
+    }
+    std::sort(entries_.begin(), entries_.end());
   }
+
+  bool is_large(const Box& b) const {
+    return cell_count(b) > kMaxCells;
+  }
+  const std::vector<int>& large() const {
+    return large_;
+  }
+
+  /// The cell holding point x.
+  Key cell_of(const Vec3& x) const {
+    return key(index(x.x()), index(x.y()), index(x.z()));
+  }
+
+  /// Calls visit(key) for every cell the box overlaps.
+  template <class Visit>
+  void for_each_cell(const Box& b, Visit visit) const {
+    for (long i = index(b.lo.x()); i <= index(b.hi.x()); ++i)
+      for (long j = index(b.lo.y()); j <= index(b.hi.y()); ++j)
+        for (long k = index(b.lo.z()); k <= index(b.hi.z()); ++k) visit(key(i, j, k));
+  }
+
+  /// Calls visit(box) for every small box listed in cell `key`.
+  template <class Visit>
+  void for_each_in_cell(Key key, Visit visit) const {
+    auto it = std::lower_bound(entries_.begin(), entries_.end(), Entry{key, -1});
+    for (; it != entries_.end() && it->key == key; ++it) visit(it->box);
+  }
+
+ private:
+  struct Entry {
+    Key key;
+    int box;
+    bool operator<(const Entry& o) const { return key != o.key ? key < o.key : box < o.box; }
+  };
+
+  long index(double x) const {
+    return static_cast<long>(std::floor(x * inverse_cell_));
+  }
+
+  /// 21 bits per axis; distant cells that wrap onto one key only cost extra box tests.
+  static Key key(long i, long j, long k) {
+    constexpr long mask = (1L << 21) - 1;
+    return (static_cast<Key>(i & mask) << 42) | (static_cast<Key>(j & mask) << 21) |
+           static_cast<Key>(k & mask);
+  }
+
+  long cell_count(const Box& b) const {
+    long count = 1;
+    for (int a = 0; a < 3; ++a) {
+      count *= index(b.hi[a]) - index(b.lo[a]) + 1;
+      if (count > kMaxCells) return kMaxCells + 1;
+    }
+    return count;
+  }
+
+  double inverse_cell_;
+  std::vector<Entry> entries_;
+  std::vector<int> large_;
 };
 
-/// Every (query, target) whose boxes overlap and that `accept` keeps, sorted.
+/// Every (query, target) whose boxes overlap and that `accept` keeps, sorted. A pair of small
+/// boxes is reported from exactly one cell, the one holding the lower corner of their overlap;
+/// a large box is tested against every box of the other set.
 template <class Accept>
-std::vector<std::array<int, 2>> sweep(const std::vector<Box>& queries,
-                                      const std::vector<Box>& targets, int axis, Accept accept) {
-  const SortedTargets sorted(targets, axis);
+std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& queries,
+                                                  const std::vector<Box>& targets, double cell,
+                                                  Accept accept) {
+  const BoxGrid grid(targets, cell);
   std::vector<std::array<int, 2>> pairs;
   const int n = static_cast<int>(queries.size());
 #pragma omp parallel if (n >= kMinParallelItems)
@@ -71,13 +146,19 @@ std::vector<std::array<int, 2>> sweep(const std::vector<Box>& queries,
 #pragma omp for schedule(dynamic, 256) nowait
     for (int q = 0; q < n; ++q) {
       const Box& box = queries[q];
-      auto k =
-          std::lower_bound(sorted.lo.begin(), sorted.lo.end(), box.lo[axis] - sorted.max_width) -
-          sorted.lo.begin();
-      for (; k < static_cast<long>(sorted.lo.size()) && sorted.lo[k] <= box.hi[axis]; ++k) {
-        const int t = sorted.order[k];
+      auto consider = [&](int t) {
         if (overlap(box, targets[t]) && accept(q, t)) local.push_back({q, t});
+      };
+      if (grid.is_large(box)) {
+        for (int t = 0; t < static_cast<int>(targets.size()); ++t) consider(t);
+        continue;
       }
+      for (int t : grid.large()) consider(t);
+      grid.for_each_cell(box, [&](Key key) {
+        grid.for_each_in_cell(key, [&](int t) {
+          if (grid.cell_of(box.lo.cwiseMax(targets[t].lo)) == key) consider(t);
+        });
+      });
     }
 #pragma omp critical
     pairs.insert(pairs.end(), local.begin(), local.end());
@@ -86,13 +167,11 @@ std::vector<std::array<int, 2>> sweep(const std::vector<Box>& queries,
   return pairs;
 }
 
-/// The axis along which the primitives' centres spread most (fewest overlaps to scan).
-int sweep_axis(const Positions& p) {
-  if (p.rows() == 0) return 0;
-  const Vec3 extent = (p.colwise().maxCoeff() - p.colwise().minCoeff()).transpose();
-  int axis = 0;
-  extent.maxCoeff(&axis);
-  return axis;
+/// Grid cell size: the mean largest extent of the boxes (at least the inflation).
+double cell_size(const std::vector<Box>& boxes, double inflation) {
+  double sum = 0.0;
+  for (const Box& b : boxes) sum += (b.hi - b.lo).maxCoeff();
+  return std::max(boxes.empty() ? 1.0 : sum / static_cast<double>(boxes.size()), inflation);
 }
 
 }  // namespace
@@ -111,13 +190,13 @@ void find_candidates(const CollisionMesh& mesh, const Positions& p0, const Posit
       nf, [&](int f) { return mesh.faces.row(f).data(); }, p0, p1, r);
   const auto edge_boxes = boxes<2>(
       ne, [&](int e) { return mesh.edges[e].data(); }, p0, p1, r);
-  const int axis = sweep_axis(p0);
-  out.vertex_face = sweep(vertex_boxes, face_boxes, axis, [&](int v, int f) {
+  const double cell = cell_size(edge_boxes, inflation);
+  out.vertex_face = overlapping_pairs(vertex_boxes, face_boxes, cell, [&](int v, int f) {
     const auto face = mesh.faces.row(f);
     if (face[0] == v || face[1] == v || face[2] == v) return false;
     return !(mesh.is_obstacle(v) && mesh.is_obstacle(face[0]));
   });
-  out.edge_edge = sweep(edge_boxes, edge_boxes, axis, [&](int a, int b) {
+  out.edge_edge = overlapping_pairs(edge_boxes, edge_boxes, cell, [&](int a, int b) {
     if (b <= a) return false;
     const auto& ea = mesh.edges[a];
     const auto& eb = mesh.edges[b];

@@ -1,6 +1,7 @@
 #pragma once
 /// @file Broad phase of contact: the primitive pairs that may come within the activation gap
-/// during a step (IPC, Li et al. 2020, §4.1), by sweep and prune of axis-aligned boxes.
+/// during a step (IPC, Li et al. 2020, §4.1), by a uniform grid (spatial hash) of axis-aligned
+/// boxes.
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -20,8 +21,9 @@ struct CandidateSet {
 /// All vertex–face and edge–edge pairs of `mesh` whose boxes overlap, each box spanning its
 /// primitive at positions p0 and p1 (the start and end of a linear motion; p1 may equal p0)
 /// grown by `inflation` (m) on every side. Pairs that share a vertex and pairs of two obstacle
-/// primitives are left out. Sweep and prune along the axis of largest spread, OpenMP-parallel
-/// over primitives; the output is sorted, so it does not depend on the thread count.
+/// primitives are left out. Boxes are binned in a uniform grid whose cell is the mean edge-box
+/// size; each overlapping pair is reported from one cell only; OpenMP-parallel over primitives.
+/// The output is sorted, so it does not depend on the thread count.
 /// @param p0, p1 (|V_collision| × 3) positions
 void find_candidates(const CollisionMesh& mesh, const Positions& p0, const Positions& p1,
                      double inflation, CandidateSet& out);

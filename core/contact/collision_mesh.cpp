@@ -11,6 +11,16 @@ double CollisionMesh::max_offset() const {
                                : *std::max_element(vertex_offset.begin(), vertex_offset.end());
 }
 
+std::string describe_vertex(const CollisionMesh& mesh, int v) {
+  return mesh.is_obstacle(v) ? "obstacle vertex " + std::to_string(v - mesh.num_shell_vertices)
+                             : "shell vertex " + std::to_string(v);
+}
+
+std::string describe_face(const CollisionMesh& mesh, int f) {
+  return f < mesh.num_shell_faces ? "shell face " + std::to_string(f)
+                                  : "obstacle face " + std::to_string(f - mesh.num_shell_faces);
+}
+
 CollisionMesh build_collision_mesh(const Positions& shell_rest, const Faces& shell_faces,
                                    const std::vector<double>& shell_offset,
                                    const std::vector<double>& shell_friction,

@@ -2,6 +2,7 @@
 /// @file The surfaces contact acts on: the simulated shell, whose vertices are the DOFs, and
 /// the scripted obstacles, whose vertices are not, as one indexed triangle set.
 #include <array>
+#include <string>
 #include <vector>
 
 #include "common/types.hpp"
@@ -25,6 +26,11 @@ struct CollisionMesh {
   /// Largest offset over all vertices (m).
   double max_offset() const;
 };
+
+/// "shell vertex 12" or "obstacle vertex 3" (obstacle vertices numbered from 0), for messages.
+std::string describe_vertex(const CollisionMesh& mesh, int v);
+/// "shell face 12" or "obstacle face 3", for messages.
+std::string describe_face(const CollisionMesh& mesh, int f);
 
 /// An obstacle surface to merge into a collision mesh.
 struct ObstacleSurface {

@@ -206,6 +206,33 @@ void ContactPotential::add_gradient(const Vector& x, Vector& g) const {
   }
 }
 
+/// The Hessian of one pair restricted to the stencil slots that are shell DOFs and take part
+/// (non-zero diagonal block): obstacle DOFs are not unknowns, so the PSD projection acts on
+/// this restriction only (3 × 3 for a shell vertex against an obstacle face).
+struct ContactPotential::LocalHessian {
+  std::array<int, 4> vertices{};  ///< shell vertex of each kept slot
+  int count = 0;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 12, 12> matrix;
+};
+
+ContactPotential::LocalHessian ContactPotential::restricted_hessian(const Pair& p, const Mat12& h,
+                                                                    bool project) const {
+  LocalHessian local;
+  std::array<int, 4> slots{};
+  for (int k = 0; k < 4; ++k) {
+    const int v = p.vertices[k];
+    if (v < 0 || mesh_.is_obstacle(v) || h.block<3, 3>(3 * k, 3 * k).isZero(0.0)) continue;
+    slots[local.count] = k;
+    local.vertices[local.count++] = v;
+  }
+  local.matrix.resize(3 * local.count, 3 * local.count);
+  for (int a = 0; a < local.count; ++a)
+    for (int b = 0; b < local.count; ++b)
+      local.matrix.block<3, 3>(3 * a, 3 * b) = h.block<3, 3>(3 * slots[a], 3 * slots[b]);
+  if (project && local.count > 0) project_psd(local.matrix);
+  return local;
+}
+
 void ContactPotential::append_hessian_triplets(const Vector& x, bool project,
                                                std::vector<Eigen::Triplet<double>>& out) const {
   ScopedTimer timer(stats_.assembly_seconds);
@@ -213,26 +240,22 @@ void ContactPotential::append_hessian_triplets(const Vector& x, bool project,
   const std::vector<int> items = active_items(positions_);
   const int n = static_cast<int>(items.size());
   stats_.active_pairs += n;
-  std::vector<Mat12> hessians(n);
+  std::vector<LocalHessian> hessians(n);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelItems / 16)
   for (int i = 0; i < n; ++i) {
     const Pair p = pair(items[i]);
     Vec12 grad;
-    pair_energy(p, stencil_positions(p.vertices, positions_), &grad, &hessians[i]);
-    if (project) project_psd(hessians[i]);
+    Mat12 h;
+    pair_energy(p, stencil_positions(p.vertices, positions_), &grad, &h);
+    hessians[i] = restricted_hessian(p, h, project);
   }
-  for (int i = 0; i < n; ++i) {
-    const Pair p = pair(items[i]);
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) {
-        const int va = p.vertices[a], vb = p.vertices[b];
-        if (va < 0 || vb < 0 || mesh_.is_obstacle(va) || mesh_.is_obstacle(vb)) continue;
-        const auto block = hessians[i].block<3, 3>(3 * a, 3 * b);
-        if (block.isZero(0.0)) continue;
+  for (const LocalHessian& local : hessians)
+    for (int a = 0; a < local.count; ++a)
+      for (int b = 0; b < local.count; ++b)
         for (int c = 0; c < 3; ++c)
-          for (int r = 0; r < 3; ++r) out.emplace_back(3 * va + r, 3 * vb + c, block(r, c));
-      }
-  }
+          for (int r = 0; r < 3; ++r)
+            out.emplace_back(3 * local.vertices[a] + r, 3 * local.vertices[b] + c,
+                             local.matrix(3 * a + r, 3 * b + c));
 }
 
 void ContactPotential::update_candidates(const Positions& p0, const Positions& p1) {
@@ -326,19 +349,12 @@ bool ContactPotential::end_iteration(const Vector& x) {
 
 std::string ContactPotential::describe(int item) const {
   const Pair p = pair(item);
-  auto vertex = [&](int v) {
-    return mesh_.is_obstacle(v) ? "obstacle vertex " + std::to_string(v - mesh_.num_shell_vertices)
-                                : "shell vertex " + std::to_string(v);
-  };
-  if (p.kind == Pair::Kind::ground) return vertex(p.vertices[0]) + " and the ground";
+  auto vertex = [&](int k) { return describe_vertex(mesh_, p.vertices[k]); };
+  if (p.kind == Pair::Kind::ground) return vertex(0) + " and the ground";
   if (p.kind == Pair::Kind::edge_edge)
-    return "edge (" + vertex(p.vertices[0]) + ", " + vertex(p.vertices[1]) + ") and edge (" +
-           vertex(p.vertices[2]) + ", " + vertex(p.vertices[3]) + ")";
-  const int f = candidates_.vertex_face[item][1];
-  const std::string face = f < mesh_.num_shell_faces
-                               ? "shell face " + std::to_string(f)
-                               : "obstacle face " + std::to_string(f - mesh_.num_shell_faces);
-  return vertex(p.vertices[0]) + " and " + face;
+    return "edge (" + vertex(0) + ", " + vertex(1) + ") and edge (" + vertex(2) + ", " + vertex(3) +
+           ")";
+  return vertex(0) + " and " + describe_face(mesh_, candidates_.vertex_face[item][1]);
 }
 
 void ContactPotential::check_separated(const Vector& x) {

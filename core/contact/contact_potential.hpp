@@ -101,6 +101,8 @@ class ContactPotential : public EnergyTerm, public StepFilter {
   /// κ m b of one pair at stencil positions xs; gradient and Hessian when non-null.
   double pair_energy(const Pair& pair, const Vec12& xs, Vec12* grad, Mat12* hess) const;
   std::vector<int> active_items(const Positions& positions) const;
+  struct LocalHessian;
+  LocalHessian restricted_hessian(const Pair& p, const Mat12& h, bool project) const;
   /// Positions of every collision vertex: shell from x, obstacles from obstacle_positions_.
   void gather_positions(const Vector& x, Positions& out) const;
   void update_candidates(const Positions& p0, const Positions& p1);

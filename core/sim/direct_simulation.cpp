@@ -121,7 +121,11 @@ ContactPotential& DirectSimulation::add_contact(Problem& problem) {
   Positions all(contact->mesh().num_vertices(), 3);
   all.topRows(contact->mesh().num_shell_vertices) = as_positions(x_);
   all.bottomRows(contact->mesh().num_obstacle_vertices) = contact->obstacle_positions();
-  check_intersection_free(all, contact->mesh().faces, scene_.name);  // CGAL exact predicates
+  const auto crossing = intersecting_faces(all, contact->mesh().faces, 1);  // CGAL, exact
+  if (!crossing.empty())
+    fail(Status::intersecting, scene_.name + ": the start intersects: " +
+                                   describe_face(contact->mesh(), crossing[0].a) + " and " +
+                                   describe_face(contact->mesh(), crossing[0].b) + " cross");
   contact->check_separated(x_);
   return problem.add_term(std::move(contact));
 }

@@ -228,6 +228,20 @@ static void test_misuse(void) {
               PS_ERROR_INVALID_SCENE, ps_last_error(), "efects");
   CHECK_ERROR(ps_sim_create_from_scene("{ not json", NULL, &sim), PS_ERROR_INVALID_SCENE,
               ps_last_error(), "");
+  /* A cloth cutting through an obstacle box is rejected, naming the crossing faces. */
+  CHECK_ERROR(ps_sim_create_from_scene(
+                  "{\"effects\": [\"membrane\", \"contact\"], \"bodies\": [{\"mesh\": "
+                  "{\"generator\": \"grid\", \"width\": 1, \"height\": 1, \"nx\": 2, "
+                  "\"ny\": 2}}], \"obstacles\": [{\"mesh\": {\"generator\": \"box\", "
+                  "\"size\": [0.5, 0.5, 0.5]}, \"transform\": {\"translate\": [0.5, 0.5, 0]}}]}",
+                  NULL, &sim),
+              PS_ERROR_INTERSECTING, ps_last_error(), "obstacle face");
+  CHECK_ERROR(ps_sim_create_from_scene("{\"effects\": [\"contact\"], \"contact\": "
+                                       "{\"dhat\": 0}, \"bodies\": [{\"mesh\": "
+                                       "{\"generator\": \"grid\", \"width\": 1, "
+                                       "\"height\": 1, \"nx\": 2, \"ny\": 2}}]}",
+                                       NULL, &sim),
+              PS_ERROR_INVALID_SCENE, ps_last_error(), "dhat");
   CHECK(sim == NULL);
 }
 
