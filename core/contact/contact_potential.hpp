@@ -10,7 +10,7 @@
 #include "contact/collision_mesh.hpp"
 #include "contact/contact_stats.hpp"
 #include "contact/primitive_distance.hpp"
-#include "energy/energy_term.hpp"
+#include "energy/changing_pattern_term.hpp"
 #include "solve/step_filter.hpp"
 
 namespace progsim {
@@ -38,7 +38,7 @@ struct ContactPoint {
 /// the two sides' offsets, C-IPC §4). value() is +∞ if a pair is at or inside its offset.
 /// As a StepFilter it bounds every Newton step with additive CCD (C-IPC Alg. 1) and keeps the
 /// candidate set of the segment it cleared; its Hessian pattern changes with the pairs.
-class ContactPotential : public EnergyTerm, public StepFilter {
+class ContactPotential : public ChangingPatternTerm, public StepFilter {
  public:
   /// @param mesh shell (DOFs) + obstacles
   /// @param dhat activation gap d̂ (m), > 0
@@ -50,10 +50,6 @@ class ContactPotential : public EnergyTerm, public StepFilter {
   const char* name() const override { return "contact"; }
   double value(const Vector& x) const override;
   void add_gradient(const Vector& x, Vector& g) const override;
-  std::size_t hessian_entry_count() const override { return 0; }
-  void hessian_pattern(int*, int*) const override {}
-  void hessian_values(const Vector&, bool, double*) const override {}
-  bool has_fixed_pattern() const override { return false; }
   void append_hessian_triplets(const Vector& x, bool project_psd,
                                std::vector<Eigen::Triplet<double>>& out) const override;
 

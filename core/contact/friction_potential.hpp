@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "contact/contact_potential.hpp"
-#include "energy/energy_term.hpp"
+#include "energy/changing_pattern_term.hpp"
 
 namespace progsim {
 
@@ -14,7 +14,7 @@ namespace progsim {
 /// below the slip ε_x = ε_v h. Obstacle vertices contribute their scripted displacement, so a
 /// moving obstacle drags what touches it. The Hessian is PSD by construction (IPC §5.2), so
 /// the projected and exact Hessians agree. Only contacts with μ > 0 are kept.
-class FrictionPotential : public EnergyTerm {
+class FrictionPotential : public ChangingPatternTerm {
  public:
   /// @param contact the barrier whose active pairs define the contacts (must outlive this)
   /// @param slip_threshold ε_x (m), > 0
@@ -29,10 +29,6 @@ class FrictionPotential : public EnergyTerm {
   const char* name() const override { return "friction"; }
   double value(const Vector& x) const override;
   void add_gradient(const Vector& x, Vector& g) const override;
-  std::size_t hessian_entry_count() const override { return 0; }
-  void hessian_pattern(int*, int*) const override {}
-  void hessian_values(const Vector&, bool, double*) const override {}
-  bool has_fixed_pattern() const override { return false; }
   void append_hessian_triplets(const Vector& x, bool project_psd,
                                std::vector<Eigen::Triplet<double>>& out) const override;
 

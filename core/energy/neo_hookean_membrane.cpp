@@ -11,7 +11,6 @@
 namespace progsim {
 namespace {
 
-using Mat32 = Eigen::Matrix<double, 3, 2>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Invariants of C = FᵀF for a 3×2 F, computed from A = C − I so that small strains keep
@@ -70,23 +69,10 @@ NeoHookeanMembrane::NeoHookeanMembrane(const Positions& rest, const Faces& faces
   elements_.resize(faces.rows());
   rest_area_.resize(faces.rows());
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const Vec3 x0 = rest.row(faces(f, 0)), x1 = rest.row(faces(f, 1)), x2 = rest.row(faces(f, 2));
-    const Vec3 e1 = x1 - x0, e2 = x2 - x0;
-    const Vec3 n = e1.cross(e2);
-    const double area = 0.5 * n.norm();
-    if (!(area > 0.0) || !std::isfinite(area))
-      fail(Status::invalid_mesh, "membrane: rest face " + std::to_string(f) +
-                                     " is degenerate (area " + std::to_string(area) + " m²)");
-    // Rest edges in the orthonormal frame (t1, t2) of the rest triangle: D̄ = [[a, b], [0, d]].
-    const Vec3 t1 = e1.normalized();
-    const Vec3 t2 = n.normalized().cross(t1);
-    const double a = e1.norm(), b = e2.dot(t1), d = e2.dot(t2);
-    Mat2 rest_inverse;  // D̄⁻¹
-    rest_inverse << 1.0 / a, -b / (a * d), 0.0, 1.0 / d;
+    const TriangleFrame frame = rest_triangle_frame(rest, faces, f, "membrane");
+    const double area = frame.area;
     Element& el = elements_[f];
-    el.beta.row(1) = rest_inverse.row(0);  // F = (x1 − x0) D̄⁻¹[0,:] + (x2 − x0) D̄⁻¹[1,:]
-    el.beta.row(2) = rest_inverse.row(1);
-    el.beta.row(0) = -el.beta.row(1) - el.beta.row(2);
+    el.beta = frame.beta;
     const ShellMaterial& m = face_materials[f];
     el.weight = m.thickness * area;
     el.mu = shear_modulus(m);
@@ -95,17 +81,9 @@ NeoHookeanMembrane::NeoHookeanMembrane(const Positions& rest, const Faces& faces
   }
 }
 
-Mat32 NeoHookeanMembrane::deformation_gradient(int e, const LocalVector& xe) const {
-  const Mat32& beta = elements_[e].beta;
-  Mat32 f = xe.segment<3>(0) * beta.row(0);
-  f.noalias() += xe.segment<3>(3) * beta.row(1);
-  f.noalias() += xe.segment<3>(6) * beta.row(2);
-  return f;
-}
-
 double NeoHookeanMembrane::element_value(int e, const LocalVector& xe) const {
   const Element& el = elements_[e];
-  const Strain strain(deformation_gradient(e, xe));
+  const Strain strain(deformation_gradient(elements_[e].beta, xe));
   if (!strain.valid) return std::numeric_limits<double>::infinity();  // degenerate triangle
   const double l = strain.log_det;
   // W = μ/2 (tr C − 2 − ln det C) + λ/8 (ln det C)² (PSQ footnote 1; Chen et al. 2018),
@@ -116,7 +94,7 @@ double NeoHookeanMembrane::element_value(int e, const LocalVector& xe) const {
 
 void NeoHookeanMembrane::element_gradient(int e, const LocalVector& xe, LocalVector& g) const {
   const Element& el = elements_[e];
-  const Mat32 f = deformation_gradient(e, xe);
+  const Mat32 f = deformation_gradient(elements_[e].beta, xe);
   const Strain strain(f);
   if (!strain.valid) {
     g.setConstant(kNaN);  // infinite energy: no meaningful force (see class comment)
@@ -170,7 +148,7 @@ void NeoHookeanMembrane::pull_back(int e, const Matrix6& hf, LocalMatrix& h) con
 
 void NeoHookeanMembrane::element_hessian(int e, const LocalVector& xe, LocalMatrix& h) const {
   Matrix6 hf;
-  if (!stress_derivative(e, deformation_gradient(e, xe), hf)) {
+  if (!stress_derivative(e, deformation_gradient(elements_[e].beta, xe), hf)) {
     h.setConstant(kNaN);
     return;
   }
@@ -180,7 +158,7 @@ void NeoHookeanMembrane::element_hessian(int e, const LocalVector& xe, LocalMatr
 void NeoHookeanMembrane::element_projected_hessian(int e, const LocalVector& xe,
                                                    LocalMatrix& h) const {
   Matrix6 hf;
-  if (!projected_stress_derivative(e, deformation_gradient(e, xe), hf)) {
+  if (!projected_stress_derivative(e, deformation_gradient(elements_[e].beta, xe), hf)) {
     h.setConstant(kNaN);
     return;
   }

@@ -5,6 +5,7 @@
 
 #include "energy/shell_material.hpp"
 #include "energy/stencil_term.hpp"
+#include "energy/triangle_frame.hpp"
 
 namespace progsim {
 
@@ -54,8 +55,6 @@ class NeoHookeanMembrane : public StencilTerm<3> {
   };
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
-  /// F (3×2) of element e at positions xe.
-  Eigen::Matrix<double, 3, 2> deformation_gradient(int e, const LocalVector& xe) const;
   /// ∂²W/∂F² (6×6, vec F column-major) at F; false if det C ≤ 0.
   bool stress_derivative(int e, const Eigen::Matrix<double, 3, 2>& f, Matrix6& hf) const;
   /// PSD projection of ∂²W/∂F² from its closed-form eigensystem; false if det C ≤ 0.

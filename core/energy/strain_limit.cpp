@@ -11,7 +11,6 @@
 namespace progsim {
 namespace {
 
-using Mat32 = Eigen::Matrix<double, 3, 2>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -109,26 +108,10 @@ StrainLimit::StrainLimit(const Positions& rest, const Faces& faces, std::vector<
       fail(Status::invalid_argument, "strain_limit: band " + std::to_string(band) +
                                          " must be < limit − 1 = " + std::to_string(limit - 1.0) +
                                          " (face " + std::to_string(f) + ")");
-    const Vec3 x0 = rest.row(faces(f, 0));
-    const Vec3 e1 = Vec3(rest.row(faces(f, 1))) - x0, e2 = Vec3(rest.row(faces(f, 2))) - x0;
-    const Vec3 normal = e1.cross(e2);
-    const double area = 0.5 * normal.norm();
-    if (!(area > 0.0) || !std::isfinite(area))
-      fail(Status::invalid_mesh, "strain_limit: rest face " + std::to_string(f) +
-                                     " is degenerate (area " + std::to_string(area) + " m²)");
-    // D̄ = Tᵀ [e1 e2] (2×2) with T = [t1 t2] an orthonormal frame of the rest triangle's plane.
-    Eigen::Matrix<double, 3, 2> frame;
-    frame.col(0) = e1.normalized();
-    frame.col(1) = normal.normalized().cross(frame.col(0));
-    Eigen::Matrix<double, 3, 2> edges;
-    edges << e1, e2;
-    const Mat2 rest_inverse = (frame.transpose() * edges).inverse();
-    // F = D D̄⁻¹ = (x1 − x0) D̄⁻¹[0, :] + (x2 − x0) D̄⁻¹[1, :].
+    const TriangleFrame frame = rest_triangle_frame(rest, faces, f, "strain_limit");
     Element& el = elements_[f];
-    el.beta.row(1) = rest_inverse.row(0);
-    el.beta.row(2) = rest_inverse.row(1);
-    el.beta.row(0) = -el.beta.row(1) - el.beta.row(2);
-    el.area = area;
+    el.beta = frame.beta;
+    el.area = frame.area;
     el.limit = limit;
   }
 }
@@ -140,14 +123,6 @@ void StrainLimit::set_stiffness(double stiffness) {
   stiffness_ = stiffness;
 }
 
-Mat32 StrainLimit::deformation_gradient(int e, const LocalVector& xe) const {
-  const Mat32& beta = elements_[e].beta;
-  Mat32 f = xe.segment<3>(0) * beta.row(0);
-  f.noalias() += xe.segment<3>(3) * beta.row(1);
-  f.noalias() += xe.segment<3>(6) * beta.row(2);
-  return f;
-}
-
 double StrainLimit::max_stretch(const Vector& x) const {
   if (x.size() != 3 * static_cast<Eigen::Index>(num_vertices_))
     fail(Status::invalid_argument, "strain_limit: max_stretch of " + std::to_string(x.size()) +
@@ -157,13 +132,14 @@ double StrainLimit::max_stretch(const Vector& x) const {
                                    : stretch) \
     schedule(static) if (num_elements() >= kMinParallelItems)
   for (int e = 0; e < num_elements(); ++e)
-    stretch = std::max(stretch, Spectrum(deformation_gradient(e, gather(e, x))).sigma1);
+    stretch =
+        std::max(stretch, Spectrum(deformation_gradient(elements_[e].beta, gather(e, x))).sigma1);
   return stretch;
 }
 
 double StrainLimit::element_value(int e, const LocalVector& xe) const {
   const double limit = elements_[e].limit;
-  const Spectrum spectrum(deformation_gradient(e, xe));
+  const Spectrum spectrum(deformation_gradient(elements_[e].beta, xe));
   const double d1 = limit - spectrum.sigma1, d2 = limit - spectrum.sigma2;
   if (d1 >= band_) return 0.0;        // both below the activation s − ŝ
   if (!(d1 > 0.0)) return kInfinity;  // at or beyond the limit (or non-finite)
@@ -199,7 +175,7 @@ SpectralDerivatives spectral_derivatives(const Spectrum& spectrum, double limit,
 
 void StrainLimit::element_gradient(int e, const LocalVector& xe, LocalVector& g) const {
   const Element& el = elements_[e];
-  const Mat32 f = deformation_gradient(e, xe);
+  const Mat32 f = deformation_gradient(elements_[e].beta, xe);
   const Spectrum spectrum(f);
   const double d1 = el.limit - spectrum.sigma1;
   if (d1 >= band_) {
@@ -221,7 +197,7 @@ void StrainLimit::element_gradient(int e, const LocalVector& xe, LocalVector& g)
 
 void StrainLimit::element_hessian(int e, const LocalVector& xe, LocalMatrix& h) const {
   const Element& el = elements_[e];
-  const Mat32 f = deformation_gradient(e, xe);
+  const Mat32 f = deformation_gradient(elements_[e].beta, xe);
   const Spectrum spectrum(f);
   const double d1 = el.limit - spectrum.sigma1;
   if (d1 >= band_) {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "energy/stencil_term.hpp"
+#include "energy/triangle_frame.hpp"
 
 namespace progsim {
 
@@ -78,9 +79,6 @@ class StrainLimit : public StencilTerm<3> {
     double area;                       ///< Ā (m²)
     double limit;                      ///< s_f
   };
-
-  /// F (3×2) of element e at positions xe.
-  Eigen::Matrix<double, 3, 2> deformation_gradient(int e, const LocalVector& xe) const;
 
   std::vector<Element> elements_;
   double band_;
