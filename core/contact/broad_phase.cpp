@@ -105,8 +105,9 @@ class BoxGrid {
     bool operator<(const Entry& o) const { return key != o.key ? key < o.key : box < o.box; }
   };
 
+  /// Cell index along an axis, clamped so that huge coordinates cannot overflow the cast.
   long index(double x) const {
-    return static_cast<long>(std::floor(x * inverse_cell_));
+    return static_cast<long>(std::clamp(std::floor(x * inverse_cell_), -1e15, 1e15));
   }
 
   /// 21 bits per axis; distant cells that wrap onto one key only cost extra box tests.

@@ -85,6 +85,25 @@ def test_array_shapes_and_dtypes_are_checked():
         assert h.level_size() == (9, 8)
 
 
+def _cloth_and_box_scene(material="{}", contact="{}"):
+    """A 1 m cloth in the x-y plane cut through by a 0.5 m obstacle box."""
+    return (
+        '{"effects": ["membrane", "contact"], "contact": %s, '
+        '"bodies": [{"mesh": {"generator": "grid", "width": 1, "height": 1, "nx": 2, "ny": 2},'
+        ' "material": %s}], "obstacles": [{"mesh": {"generator": "box", "size": [0.5, 0.5, 0.5]},'
+        ' "transform": {"translate": [0.5, 0.5, 0]}}]}' % (contact, material)
+    )
+
+
+def test_intersecting_start_and_bad_contact_parameters():
+    with pytest.raises(progsim.IntersectingError, match="obstacle face"):
+        progsim.Simulation.from_scene(_cloth_and_box_scene())
+    with pytest.raises(progsim.InvalidSceneError, match="dhat"):
+        progsim.Simulation.from_scene(_cloth_and_box_scene(contact='{"dhat": -1}'))
+    with pytest.raises(progsim.InvalidSceneError, match="friction"):
+        progsim.Simulation.from_scene(_cloth_and_box_scene(material='{"friction": -0.5}'))
+
+
 def test_scene_typo_names_the_key():
     with pytest.raises(progsim.InvalidSceneError, match="efects") as raised:
         progsim.Simulation.from_scene('{"bodies": [], "efects": []}')

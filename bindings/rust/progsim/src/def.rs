@@ -468,8 +468,8 @@ mod tests {
         effects.set(Effect::Gravity, false);
         effects.set(Effect::Pressure, true);
         assert_eq!(effects.iter().collect::<Vec<_>>(), [Effect::Membrane, Effect::Pressure]);
-        assert_eq!(Effects::all().bits(), 0b1111);
-        assert_eq!(format!("{:?}", Effects::from_bits_retain(0x11)), "{Membrane, 0x10}");
+        assert_eq!(Effects::all().bits(), 0b111_1111);
+        assert_eq!(format!("{:?}", Effects::from_bits_retain(0x81)), "{Membrane, 0x80}");
         assert!(Effects::empty().is_empty());
     }
 }
