@@ -172,27 +172,35 @@ double ContactPotential::value(const Vector& x) const {
   return total;
 }
 
-std::vector<int> ContactPotential::active_items(const Positions& positions) const {
+void ContactPotential::measure_distances(const Positions& positions) const {
   const int n = num_items();
-  std::vector<char> active(n, 0);
+  distances_squared_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
   for (int k = 0; k < n; ++k) {
     const Pair p = pair(k);
-    const double d2 = pair_distance_squared(p, stencil_positions(p.vertices, positions), nullptr);
-    active[k] = barrier_argument(d2, p.offset) < barrier_activation(p.offset, dhat_);
+    distances_squared_[k] =
+        pair_distance_squared(p, stencil_positions(p.vertices, positions), nullptr);
   }
-  std::vector<int> items;
-  for (int k = 0; k < n; ++k)
-    if (active[k]) items.push_back(k);
-  return items;
+}
+
+const std::vector<int>& ContactPotential::active_items(const Positions& positions) const {
+  measure_distances(positions);
+  active_.clear();
+  for (int k = 0; k < static_cast<int>(distances_squared_.size()); ++k) {
+    const double offset = pair(k).offset;
+    if (barrier_argument(distances_squared_[k], offset) < barrier_activation(offset, dhat_))
+      active_.push_back(k);
+  }
+  return active_;
 }
 
 void ContactPotential::add_gradient(const Vector& x, Vector& g) const {
   ScopedTimer timer(stats_.assembly_seconds);
   gather_positions(x, positions_);
-  const std::vector<int> items = active_items(positions_);
+  const std::vector<int>& items = active_items(positions_);
   const int n = static_cast<int>(items.size());
-  std::vector<Vec12> grads(n);
+  std::vector<Vec12>& grads = gradients_;  // reused: no allocation once grown
+  grads.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
   for (int i = 0; i < n; ++i) {
     const Pair p = pair(items[i]);
@@ -214,6 +222,8 @@ struct ContactPotential::LocalHessian {
   int count = 0;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 12, 12> matrix;
 };
+
+ContactPotential::~ContactPotential() = default;
 
 ContactPotential::LocalHessian ContactPotential::restricted_hessian(const Pair& p, const Mat12& h,
                                                                     bool project) const {
@@ -237,10 +247,11 @@ void ContactPotential::append_hessian_triplets(const Vector& x, bool project,
                                                std::vector<Eigen::Triplet<double>>& out) const {
   ScopedTimer timer(stats_.assembly_seconds);
   gather_positions(x, positions_);
-  const std::vector<int> items = active_items(positions_);
+  const std::vector<int>& items = active_items(positions_);
   const int n = static_cast<int>(items.size());
   stats_.active_pairs += n;
-  std::vector<LocalHessian> hessians(n);
+  std::vector<LocalHessian>& hessians = hessians_;  // reused: no allocation once grown
+  hessians.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelItems / 16)
   for (int i = 0; i < n; ++i) {
     const Pair p = pair(items[i]);
@@ -266,14 +277,11 @@ void ContactPotential::update_candidates(const Positions& p0, const Positions& p
 }
 
 double ContactPotential::min_gap(const Positions& positions, int* closest_item) const {
-  const int n = num_items();
+  measure_distances(positions);  // in parallel; the arg-min below is a cheap serial pass
   double best = std::numeric_limits<double>::infinity();
   int best_item = -1;
-  for (int k = 0; k < n; ++k) {
-    const Pair p = pair(k);
-    const double gap =
-        std::sqrt(pair_distance_squared(p, stencil_positions(p.vertices, positions), nullptr)) -
-        p.offset;
+  for (int k = 0; k < static_cast<int>(distances_squared_.size()); ++k) {
+    const double gap = std::sqrt(distances_squared_[k]) - pair(k).offset;
     if (gap < best) {
       best = gap;
       best_item = k;

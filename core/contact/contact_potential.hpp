@@ -46,6 +46,7 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   /// @param ground nullable: the analytic ground
   ContactPotential(CollisionMesh mesh, double dhat, double stiffness,
                    std::optional<GroundPlane> ground);
+  ~ContactPotential() override;
 
   const char* name() const override { return "contact"; }
   double value(const Vector& x) const override;
@@ -96,7 +97,10 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   double mollifier_threshold_of(const Pair& pair) const;
   /// κ m b of one pair at stencil positions xs; gradient and Hessian when non-null.
   double pair_energy(const Pair& pair, const Vec12& xs, Vec12* grad, Mat12* hess) const;
-  std::vector<int> active_items(const Positions& positions) const;
+  /// Squared distance of every item at `positions` into distances_squared_ (parallel).
+  void measure_distances(const Positions& positions) const;
+  /// The items within the activation gap (a reference to a reused buffer).
+  const std::vector<int>& active_items(const Positions& positions) const;
   struct LocalHessian;
   LocalHessian restricted_hessian(const Pair& p, const Mat12& h, bool project) const;
   /// Positions of every collision vertex: shell from x, obstacles from obstacle_positions_.
@@ -116,6 +120,11 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   double last_min_gap_ = std::numeric_limits<double>::infinity();
   mutable ContactStats stats_;
   mutable Positions positions_, trial_positions_;
+  // Per-evaluation work buffers, reused so that Newton iterations do not reallocate them.
+  mutable std::vector<double> distances_squared_;
+  mutable std::vector<int> active_;
+  mutable std::vector<Vec12> gradients_;
+  mutable std::vector<LocalHessian> hessians_;
   Vector moved_;
 };
 
