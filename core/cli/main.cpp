@@ -1,4 +1,5 @@
-// progsim command-line interface: run scenes, print build information and parameters.
+// progsim command-line interface: run scenes, build hierarchies, print build information and
+// parameters.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -6,6 +7,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "cli/hierarchy_command.hpp"
 #include "cli/progress_bar.hpp"
 #include "common/build_info.hpp"
 #include "common/error.hpp"
@@ -75,6 +77,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--steps", run_options.steps, "override the number of steps")
       ->check(CLI::PositiveNumber);
   run_cmd->add_flag("--quiet", run_options.quiet, "no progress bar");
+  cli::HierarchyCommand hierarchy_options;
+  CLI::App* hierarchy_cmd = cli::add_hierarchy_command(app, hierarchy_options);
   app.add_subcommand("info", "print version and build options")->callback([] {
     std::printf("%s", build_info().c_str());
   });
@@ -82,9 +86,9 @@ int main(int argc, char** argv) {
     std::printf("%s", parameter_table_markdown().c_str());
   });
   CLI11_PARSE(app, argc, argv);
-  if (!run_cmd->parsed()) return 0;
+  if (!run_cmd->parsed() && !hierarchy_cmd->parsed()) return 0;
   try {
-    return run(run_options);
+    return run_cmd->parsed() ? run(run_options) : cli::run_hierarchy_command(hierarchy_options);
   } catch (const Error& e) {
     std::fprintf(stderr, "progsim: error (%s): %s\n", status_name(e.status()), e.what());
     return 2;

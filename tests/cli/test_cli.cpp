@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "hierarchy/hierarchy_io.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -130,4 +132,40 @@ TEST_F(Cli, RejectsMalformedMeshes) {
   expect_rejected(mesh_scene("nonmanifold.obj",
                              quad + "v 0 0 1\nv 0 0 -1\nf 1 2 3\nf 1 3 4\nf 1 3 5\nf 3 1 6\n"),
                   "non-manifold");
+}
+
+TEST_F(Cli, HierarchyBuildsAndSavesLevels) {
+  const std::string mesh = std::string(PROGSIM_SOURCE_DIR) + "/scenes/meshes/square_cloth.obj";
+  const fs::path out = dir_ / "cloth.hierarchy";
+  const CommandResult r =
+      run_cli("hierarchy " + mesh + " --levels 30,110 --out " + out.string() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const progsim::MeshHierarchy loaded = progsim::load_hierarchy(out.string());
+  ASSERT_EQ(loaded.num_levels(), 3);
+  EXPECT_EQ(loaded.levels[0].rest.num_vertices(), 30);
+  EXPECT_EQ(loaded.levels[1].rest.num_vertices(), 110);
+  EXPECT_NE(r.output.find("   30"), std::string::npos) << r.output;
+  const fs::path by_ratio = dir_ / "ratio.hierarchy";
+  ASSERT_EQ(
+      run_cli("hierarchy " + mesh + " --ratio 4 --count 2 --out " + by_ratio.string() + " --quiet")
+          .exit_code,
+      0);
+  EXPECT_EQ(progsim::load_hierarchy(by_ratio.string()).levels[0].rest.num_vertices(),
+            28);  // 441 / 16
+}
+
+TEST_F(Cli, HierarchyRejectsBadRequests) {
+  const std::string mesh = std::string(PROGSIM_SOURCE_DIR) + "/scenes/meshes/square_cloth.obj";
+  const fs::path out = dir_ / "never.hierarchy";
+  for (const auto& [args, needle] :
+       {std::pair<std::string, std::string>{"--levels 500", "below the mesh's 441 vertices"},
+        {"--levels 50,50", "distinct"},
+        {"--ratio 1 --count 2", "must be > 1"},
+        {"--ratio 4 --count 6", "at least 4 needed"}}) {
+    const CommandResult r = run_cli("hierarchy " + mesh + " " + args + " --out " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(needle), std::string::npos) << args << ": " << r.output;
+    EXPECT_FALSE(fs::exists(out));
+  }
+  EXPECT_NE(run_cli("hierarchy " + mesh + " --levels 30 --ratio 4 --count 2 --out x").exit_code, 0);
 }

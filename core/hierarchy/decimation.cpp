@@ -1,0 +1,480 @@
+#include "hierarchy/decimation.hpp"
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_simplification/Edge_collapse_visitor_base.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_filter.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_policies.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numeric>
+#include <optional>
+#include <string>
+
+#include "common/error.hpp"
+#include "hierarchy/joint_flattening.hpp"
+
+namespace progsim {
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using VertexIndex = SurfaceMesh::Vertex_index;
+using FaceIndex = SurfaceMesh::Face_index;
+namespace SMS = CGAL::Surface_mesh_simplification;
+
+/// Collapses may not create triangles of quality 4√3·A / Σ ℓ² below this (1 = equilateral),
+/// unless the patch already had worse ones: coarse levels stay usable as simulation meshes.
+constexpr double kMinTriangleQuality = 0.05;
+
+Vec3 to_vec3(const Kernel::Point_3& p) {
+  return {p.x(), p.y(), p.z()};
+}
+
+/// Vertices are added in input order, and no garbage collection runs during decimation, so a
+/// Surface_mesh vertex index equals the input vertex index throughout.
+SurfaceMesh to_surface_mesh(const TriangleMesh& mesh) {
+  SurfaceMesh sm;
+  for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
+    sm.add_vertex(Kernel::Point_3(mesh.vertices(v, 0), mesh.vertices(v, 1), mesh.vertices(v, 2)));
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
+    const auto face = sm.add_face(VertexIndex(mesh.faces(f, 0)), VertexIndex(mesh.faces(f, 1)),
+                                  VertexIndex(mesh.faces(f, 2)));
+    if (face == SurfaceMesh::null_face())
+      fail(Status::invalid_mesh, "decimation: face " + std::to_string(f) +
+                                     " cannot be added (non-manifold or inconsistently oriented)");
+  }
+  return sm;
+}
+
+std::array<VertexIndex, 3> face_corners(const SurfaceMesh& sm, FaceIndex f) {
+  std::array<VertexIndex, 3> corners;
+  int k = 0;
+  for (VertexIndex v : CGAL::vertices_around_face(sm.halfedge(f), sm)) corners[k++] = v;
+  return corners;
+}
+
+/// Triangle quality 4√3·A / (ℓ₀² + ℓ₁² + ℓ₂²): 1 for equilateral, 0 for degenerate.
+double triangle_quality(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  const double lengths =
+      (p1 - p0).squaredNorm() + (p2 - p1).squaredNorm() + (p0 - p2).squaredNorm();
+  return 2.0 * std::sqrt(3.0) * (p1 - p0).cross(p2 - p0).norm() / lengths;
+}
+
+/// The user's mesh as the finest level.
+HierarchyLevel input_level(const TriangleMesh& mesh) {
+  HierarchyLevel level;
+  level.rest = mesh;
+  level.input_vertex.resize(mesh.num_vertices());
+  std::iota(level.input_vertex.begin(), level.input_vertex.end(), 0);
+  return level;
+}
+
+/// A point of a finer level being carried down the decimation: barycentric weights of the
+/// corners (input ids) of the face it lies in.
+struct TrackedPoint {
+  FaceIndex face;
+  std::array<int, 3> corners;
+  Vec3 weights;
+  bool alive = true;
+};
+
+/// The collapse accepted by the filter, until the visitor has moved its points.
+struct PendingCollapse {
+  VertexIndex v0, v1;
+  CollapsePatch patch;
+  JointFlattening flat;
+  std::vector<VertexIndex> vertex_of;  ///< patch local id → mesh vertex
+  std::vector<FaceIndex> before_faces;
+  struct Popped {
+    int point, before_face;
+    Vec3 weights;  ///< in the corner order of patch.before[before_face]
+  };
+  std::vector<Popped> popped;
+};
+
+/// Decimation state shared by the filter and the visitor (CGAL copies both, so they hold a
+/// pointer to this). Points of the finest level and of the last level reached are tracked
+/// through every collapse; each time a target count is reached, a level is recorded.
+class Tracker {
+ public:
+  Tracker(SurfaceMesh& sm, std::vector<int> targets, HierarchyProgress progress, void* user)
+      : sm_(sm), targets_(std::move(targets)), progress_(progress), user_(user) {
+    face_points_ = sm_.add_property_map<FaceIndex, std::vector<int>>("f:progsim_points").first;
+    finest_vertices_ = static_cast<int>(sm_.number_of_vertices());
+    last_level_points_ = add_vertex_points();
+  }
+
+  /// Filter: accepts the collapse of profile's edge to `placement` if its joint flattening
+  /// is valid and it makes no triangle worse than kMinTriangleQuality.
+  template <class Profile>
+  bool prepare(const Profile& profile, const Kernel::Point_3& placement) {
+    pending_.reset();
+    PendingCollapse pending;
+    pending.v0 = profile.v0();
+    pending.v1 = profile.v1();
+    gather_before_faces(pending, to_vec3(placement) == to_vec3(profile.p1()));
+    make_after_faces(pending, to_vec3(placement));
+    if (!keeps_quality(pending.patch)) return false;
+    auto flat = flatten_collapse(pending.patch);
+    if (!flat) return false;
+    pending.flat = std::move(*flat);
+    pending_ = std::move(pending);
+    return true;
+  }
+
+  /// Visitor, before the collapse: takes the tracked points off the faces that disappear or
+  /// change.
+  template <class Profile>
+  void collapsing(const Profile& profile) {
+    if (!pending_ || pending_->v0 != profile.v0() || pending_->v1 != profile.v1())
+      fail(Status::internal, "decimation: collapse of an edge the filter did not see");
+    PendingCollapse& p = *pending_;
+    for (std::size_t k = 0; k < p.before_faces.size(); ++k) {
+      for (int id : face_points_[p.before_faces[k]]) {
+        if (!points_[id].alive) continue;
+        p.popped.push_back({id, static_cast<int>(k), weights_in(points_[id], p, k)});
+      }
+      face_points_[p.before_faces[k]].clear();
+    }
+  }
+
+  /// Visitor, after the collapse: puts the points back on the new faces around `kept`,
+  /// records the collapse, and records a level when a target count is reached.
+  template <class Profile>
+  void collapsed(const Profile& profile, VertexIndex kept) {
+    PendingCollapse& p = *pending_;
+    const std::vector<FaceIndex> after_faces = match_after_faces(p, kept);
+    for (const auto& popped : p.popped) {
+      const auto [j, weights] = relocate_point(p.patch, p.flat, popped.before_face, popped.weights);
+      TrackedPoint& point = points_[popped.point];
+      point.face = after_faces[j];
+      point.corners = input_corners(p, p.patch.after[j], kept);
+      point.weights = weights;
+      face_points_[point.face].push_back(popped.point);
+    }
+    const VertexIndex removed = kept == profile.v0() ? profile.v1() : profile.v0();
+    record_collapse(p, removed, kept);
+    pending_.reset();
+    report_progress();
+    while (next_target_ < targets_.size() &&
+           static_cast<int>(sm_.number_of_vertices()) <= targets_[next_target_])
+      record_level();
+  }
+
+  /// The hierarchy, once decimation has ended: levels coarsest first, then the input mesh.
+  MeshHierarchy finish(const TriangleMesh& input) {
+    if (next_target_ < targets_.size())
+      fail(Status::invalid_mesh,
+           "decimation: stopped at " + std::to_string(sm_.number_of_vertices()) +
+               " vertices; no further collapse keeps the surface valid (asked for " +
+               std::to_string(targets_[next_target_]) + ")");
+    std::reverse(result_.levels.begin(), result_.levels.end());
+    std::reverse(result_.to_next.begin(), result_.to_next.end());
+    std::reverse(result_.to_finest.begin(), result_.to_finest.end());
+    std::reverse(result_.first_collapse.begin(), result_.first_collapse.end());
+    result_.levels.push_back(input_level(input));
+    result_.first_collapse.push_back(0);
+    return std::move(result_);
+  }
+
+ private:
+  /// One tracked point per live vertex, at a corner of one of its faces.
+  std::vector<int> add_vertex_points() {
+    std::vector<int> ids;
+    for (VertexIndex v : sm_.vertices()) {
+      auto h = sm_.halfedge(v);
+      if (sm_.is_border(h)) h = sm_.opposite(sm_.next(h));
+      TrackedPoint point;
+      point.face = sm_.face(h);
+      const auto corners = face_corners(sm_, point.face);
+      for (int k = 0; k < 3; ++k) {
+        point.corners[k] = static_cast<int>(corners[k].idx());
+        point.weights[k] = corners[k] == v ? 1.0 : 0.0;
+      }
+      ids.push_back(static_cast<int>(points_.size()));
+      face_points_[point.face].push_back(ids.back());
+      points_.push_back(point);
+    }
+    return ids;
+  }
+
+  int local_id(PendingCollapse& p, VertexIndex v) {
+    const auto it = std::find(p.vertex_of.begin(), p.vertex_of.end(), v);
+    if (it != p.vertex_of.end()) return static_cast<int>(it - p.vertex_of.begin());
+    p.vertex_of.push_back(v);
+    p.patch.points.push_back(to_vec3(sm_.point(v)));
+    return static_cast<int>(p.vertex_of.size()) - 1;
+  }
+
+  /// The faces around v0 and v1. The patch's merged vertex `a` is v1 when the collapse puts
+  /// it at v1's position (so that a flattening keeping a's uv keeps its 3D point), else v0.
+  void gather_before_faces(PendingCollapse& p, bool merged_at_v1) {
+    for (VertexIndex v : {p.v0, p.v1})
+      for (FaceIndex f : CGAL::faces_around_target(sm_.halfedge(v), sm_))
+        if (f != SurfaceMesh::null_face() &&
+            std::find(p.before_faces.begin(), p.before_faces.end(), f) == p.before_faces.end())
+          p.before_faces.push_back(f);
+    p.patch.a = local_id(p, merged_at_v1 ? p.v1 : p.v0);
+    p.patch.b = local_id(p, merged_at_v1 ? p.v0 : p.v1);
+    for (FaceIndex f : p.before_faces) {
+      const auto corners = face_corners(sm_, f);
+      p.patch.before.push_back(
+          {local_id(p, corners[0]), local_id(p, corners[1]), local_id(p, corners[2])});
+    }
+  }
+
+  /// The before faces without the two on the edge, with b merged into a.
+  static void make_after_faces(PendingCollapse& p, const Vec3& placement) {
+    const int a = p.patch.a, b = p.patch.b;
+    for (const auto& face : p.patch.before) {
+      const bool has_a = std::count(face.begin(), face.end(), a) > 0;
+      const bool has_b = std::count(face.begin(), face.end(), b) > 0;
+      if (has_a && has_b) continue;
+      auto after = face;
+      std::replace(after.begin(), after.end(), b, a);
+      p.patch.after.push_back(after);
+    }
+    p.patch.merged_point = placement;
+  }
+
+  static double worst_quality(const CollapsePatch& patch,
+                              const std::vector<std::array<int, 3>>& faces, bool after) {
+    double worst = 1.0;
+    for (const auto& face : faces) {
+      std::array<Vec3, 3> p;
+      for (int k = 0; k < 3; ++k)
+        p[k] = after && face[k] == patch.a ? patch.merged_point : patch.points[face[k]];
+      worst = std::min(worst, triangle_quality(p[0], p[1], p[2]));
+    }
+    return worst;
+  }
+
+  static bool keeps_quality(const CollapsePatch& patch) {
+    const double before = worst_quality(patch, patch.before, false);
+    return worst_quality(patch, patch.after, true) >= std::min(kMinTriangleQuality, before);
+  }
+
+  /// The point's weights reordered to the corners of before face k.
+  Vec3 weights_in(const TrackedPoint& point, const PendingCollapse& p, std::size_t k) const {
+    Vec3 w;
+    for (int j = 0; j < 3; ++j) {
+      const int input = static_cast<int>(p.vertex_of[p.patch.before[k][j]].idx());
+      const auto at = std::find(point.corners.begin(), point.corners.end(), input);
+      if (at == point.corners.end())
+        fail(Status::internal, "decimation: a tracked point lost its face corners");
+      w[j] = point.weights[at - point.corners.begin()];
+    }
+    return w;
+  }
+
+  std::array<int, 3> input_corners(const PendingCollapse& p, const std::array<int, 3>& face,
+                                   VertexIndex kept) const {
+    std::array<int, 3> out;
+    for (int k = 0; k < 3; ++k)
+      out[k] = static_cast<int>((face[k] == p.patch.a ? kept : p.vertex_of[face[k]]).idx());
+    return out;
+  }
+
+  /// The mesh face of each of patch.after, found among the faces around `kept`.
+  std::vector<FaceIndex> match_after_faces(const PendingCollapse& p, VertexIndex kept) const {
+    std::vector<FaceIndex> found(p.patch.after.size(), SurfaceMesh::null_face());
+    std::size_t matched = 0;
+    for (FaceIndex f : CGAL::faces_around_target(sm_.halfedge(kept), sm_)) {
+      if (f == SurfaceMesh::null_face()) continue;
+      const auto corners = face_corners(sm_, f);
+      for (std::size_t j = 0; j < found.size(); ++j) {
+        const auto want = input_corners(p, p.patch.after[j], kept);
+        for (int r = 0; r < 3 && found[j] == SurfaceMesh::null_face(); ++r)
+          if (static_cast<int>(corners[r].idx()) == want[0] &&
+              static_cast<int>(corners[(r + 1) % 3].idx()) == want[1] &&
+              static_cast<int>(corners[(r + 2) % 3].idx()) == want[2]) {
+            found[j] = f;
+            ++matched;
+          }
+      }
+    }
+    if (matched != found.size())
+      fail(Status::internal, "decimation: the faces after a collapse differ from its patch");
+    return found;
+  }
+
+  void record_collapse(const PendingCollapse& p, VertexIndex removed, VertexIndex kept) {
+    CollapseRecord record;
+    record.removed = static_cast<int>(removed.idx());
+    record.kept = static_cast<int>(kept.idx());
+    for (const auto& face : p.patch.before) {
+      FaceCorners corners;
+      for (int k = 0; k < 3; ++k) corners[k] = static_cast<int>(p.vertex_of[face[k]].idx());
+      record.before.push_back(corners);
+    }
+    for (const auto& face : p.patch.after) record.after.push_back(input_corners(p, face, kept));
+    result_.collapses.push_back(std::move(record));
+  }
+
+  void report_progress() {
+    const int total = finest_vertices_ - targets_.back();
+    const int done = static_cast<int>(result_.collapses.size());
+    if (!progress_ || (done % std::max(1, total / 100) != 0 && done != total)) return;
+    if (!progress_(user_, static_cast<double>(done) / total, "decimation"))
+      fail(Status::cancelled, "decimation: cancelled by the progress callback");
+  }
+
+  /// Snapshot of the live mesh as a level, with the anchors of the finest level's vertices
+  /// and of the previous level's vertices on its faces.
+  void record_level() {
+    HierarchyLevel level;
+    std::vector<int> vertex_row(sm_.num_vertices(), -1), face_row(sm_.num_faces(), -1);
+    level.rest.vertices.resize(sm_.number_of_vertices(), 3);
+    for (VertexIndex v : sm_.vertices()) {
+      vertex_row[v.idx()] = static_cast<int>(level.input_vertex.size());
+      level.rest.vertices.row(vertex_row[v.idx()]) = to_vec3(sm_.point(v)).transpose();
+      level.input_vertex.push_back(static_cast<int>(v.idx()));
+    }
+    level.rest.faces.resize(sm_.number_of_faces(), 3);
+    int row = 0;
+    for (FaceIndex f : sm_.faces()) {
+      const auto corners = face_corners(sm_, f);
+      for (int k = 0; k < 3; ++k) level.rest.faces(row, k) = vertex_row[corners[k].idx()];
+      face_row[f.idx()] = row++;
+    }
+    result_.to_finest.push_back(anchors_of(finest_points(), level, face_row));
+    result_.to_next.push_back(anchors_of(last_level_points_, level, face_row));
+    for (int id : last_level_points_)
+      if (id >= finest_vertices_) points_[id].alive = false;
+    result_.levels.push_back(std::move(level));
+    result_.first_collapse.push_back(static_cast<int>(result_.collapses.size()));
+    last_level_points_ = add_vertex_points();
+    ++next_target_;
+  }
+
+  std::vector<int> finest_points() const {
+    std::vector<int> ids(finest_vertices_);
+    std::iota(ids.begin(), ids.end(), 0);
+    return ids;
+  }
+
+  SurfaceAnchors anchors_of(const std::vector<int>& ids, const HierarchyLevel& level,
+                            const std::vector<int>& face_row) const {
+    SurfaceAnchors anchors(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const TrackedPoint& point = points_[ids[i]];
+      SurfaceAnchor& anchor = anchors[i];
+      anchor.face = face_row[point.face.idx()];
+      for (int k = 0; k < 3; ++k) {
+        const int input = level.input_vertex[level.rest.faces(anchor.face, k)];
+        const auto at = std::find(point.corners.begin(), point.corners.end(), input);
+        anchor.weights[k] = point.weights[at - point.corners.begin()];
+      }
+    }
+    return anchors;
+  }
+
+  SurfaceMesh& sm_;
+  std::vector<int> targets_;  ///< descending
+  std::size_t next_target_ = 0;
+  HierarchyProgress progress_;
+  void* user_;
+  int finest_vertices_ = 0;
+  SurfaceMesh::Property_map<FaceIndex, std::vector<int>> face_points_;
+  std::vector<TrackedPoint> points_;  ///< the finest level's vertices first
+  std::vector<int> last_level_points_;
+  std::optional<PendingCollapse> pending_;
+  MeshHierarchy result_;
+};
+
+/// CGAL placement: the quadric-optimal point (Garland and Heckbert 1997), except that a
+/// collapse touching the border puts the merged vertex on a border endpoint (the nearer one
+/// for a border edge), so borders keep their shape and the flattening's border uv stays the
+/// merged vertex's true position.
+template <class Base>
+struct BorderKeepingPlacement {
+  Base base;
+  template <class Profile>
+  boost::optional<typename Profile::Point> operator()(const Profile& profile) const {
+    const auto optimal = base(profile);
+    if (!optimal) return optimal;
+    const auto& sm = profile.surface_mesh();
+    const bool border0 = bool(CGAL::is_border(profile.v0(), sm));
+    const bool border1 = bool(CGAL::is_border(profile.v1(), sm));
+    if (!border0 && !border1) return optimal;
+    if (border0 != border1) return border0 ? profile.p0() : profile.p1();
+    const Vec3 p = to_vec3(*optimal);
+    return (p - to_vec3(profile.p0())).squaredNorm() <= (p - to_vec3(profile.p1())).squaredNorm()
+               ? profile.p0()
+               : profile.p1();
+  }
+};
+
+/// CGAL filter: bounded normal change, then the joint flattening and quality checks.
+struct FlatteningFilter {
+  Tracker* tracker;
+  template <class Profile>
+  boost::optional<typename Profile::Point> operator()(
+      const Profile& profile, boost::optional<typename Profile::Point> placement) const {
+    placement = SMS::Bounded_normal_change_filter<>()(profile, placement);
+    if (placement && !tracker->prepare(profile, *placement)) return boost::none;
+    return placement;
+  }
+};
+
+/// CGAL visitor forwarding collapses to the tracker (CGAL stores visitors by value).
+struct TrackingVisitor : SMS::Edge_collapse_visitor_base<SurfaceMesh> {
+  Tracker* tracker;
+  template <class Profile, class Placement>
+  void OnCollapsing(const Profile& profile, const Placement&) {
+    tracker->collapsing(profile);
+  }
+  template <class Profile>
+  void OnCollapsed(const Profile& profile, VertexIndex kept) {
+    tracker->collapsed(profile, kept);
+  }
+};
+
+std::vector<int> checked_targets(std::vector<int> counts, int n) {
+  std::sort(counts.begin(), counts.end(), std::greater<int>());
+  for (std::size_t k = 0; k < counts.size(); ++k)
+    if (counts[k] < 4 || counts[k] >= n || (k > 0 && counts[k] == counts[k - 1]))
+      fail(Status::invalid_argument,
+           "hierarchy: level vertex count " + std::to_string(counts[k]) +
+               " must be distinct from the others, at least 4 and below the mesh's " +
+               std::to_string(n) + " vertices");
+  return counts;
+}
+
+}  // namespace
+
+MeshHierarchy decimate(const TriangleMesh& mesh, std::vector<int> coarse_vertex_counts,
+                       HierarchyProgress progress, void* user) {
+  const std::vector<int> targets =
+      checked_targets(std::move(coarse_vertex_counts), mesh.num_vertices());
+  if (targets.empty()) {
+    MeshHierarchy single;
+    single.levels.push_back(input_level(mesh));
+    single.first_collapse.push_back(0);
+    return single;
+  }
+  SurfaceMesh sm = to_surface_mesh(mesh);
+  Tracker tracker(sm, targets, progress, user);
+  const int coarsest = targets.back();
+  auto stop = [coarsest](const auto&, const auto& profile, std::size_t, std::size_t) {
+    return static_cast<int>(profile.surface_mesh().number_of_vertices()) <= coarsest;
+  };
+  SMS::GarlandHeckbert_probabilistic_plane_policies<SurfaceMesh, Kernel> quadrics(sm);
+  const BorderKeepingPlacement<decltype(quadrics.get_placement())> placement{
+      quadrics.get_placement()};
+  TrackingVisitor visitor;
+  visitor.tracker = &tracker;
+  const FlatteningFilter filter{&tracker};
+  SMS::edge_collapse(sm, stop,
+                     CGAL::parameters::get_cost(quadrics.get_cost())
+                         .get_placement(placement)
+                         .filter(filter)
+                         .visitor(visitor));
+  return tracker.finish(mesh);
+}
+
+}  // namespace progsim

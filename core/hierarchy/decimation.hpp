@@ -1,0 +1,20 @@
+#pragma once
+/// @file Fine-to-coarse decimation of a triangle mesh by quadric edge collapse with
+/// probabilistic quadrics (CGAL Surface_mesh_simplification; PSQ §4.1, Trettner and Kobbelt
+/// 2020), tracking where every finer vertex lands on each coarser level through joint
+/// flattenings of each collapse (the intrinsic map of PSQ §4.3, after Liu et al. 2021).
+#include <vector>
+
+#include "hierarchy/mesh_hierarchy.hpp"
+
+namespace progsim {
+
+/// Decimates `mesh` (validated by the caller) through the given vertex counts (distinct, each
+/// at least 4 and below |V|, any order). Fills every field of the result except
+/// expansion_batches. Throws Error(invalid_argument) for counts out of range,
+/// Error(invalid_mesh) when no further collapse keeps the surface valid before a count is
+/// reached, Error(cancelled) when `progress` returns false.
+MeshHierarchy decimate(const TriangleMesh& mesh, std::vector<int> coarse_vertex_counts,
+                       HierarchyProgress progress, void* user);
+
+}  // namespace progsim

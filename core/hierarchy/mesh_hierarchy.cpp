@@ -1,0 +1,52 @@
+#include "hierarchy/mesh_hierarchy.hpp"
+
+#include <cmath>
+
+#include "common/error.hpp"
+#include "hierarchy/decimation.hpp"
+#include "hierarchy/expansion_coloring.hpp"
+#include "mesh/mesh_validation.hpp"
+
+namespace progsim {
+namespace {
+
+std::vector<FaceCorners> input_faces(const HierarchyLevel& level) {
+  std::vector<FaceCorners> faces(level.rest.num_faces());
+  for (int f = 0; f < level.rest.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) faces[f][k] = level.input_vertex[level.rest.faces(f, k)];
+  return faces;
+}
+
+}  // namespace
+
+std::vector<int> geometric_level_counts(int finest_vertices, double ratio, int count) {
+  if (!(ratio > 1.0) || !std::isfinite(ratio) || count < 1 || count > 30)
+    fail(Status::invalid_argument, "hierarchy: level ratio " + std::to_string(ratio) +
+                                       " must be > 1 and the level count " + std::to_string(count) +
+                                       " in 1 to 30");
+  std::vector<int> counts;
+  for (int k = count; k >= 1; --k)
+    counts.push_back(static_cast<int>(std::lround(finest_vertices / std::pow(ratio, k))));
+  if (counts.front() < 4)
+    fail(Status::invalid_argument, "hierarchy: " + std::to_string(count) + " levels at ratio " +
+                                       std::to_string(ratio) + " leave " +
+                                       std::to_string(counts.front()) +
+                                       " vertices on the coarsest (at least 4 needed)");
+  return counts;
+}
+
+MeshHierarchy build_hierarchy(const TriangleMesh& mesh, const HierarchyOptions& options,
+                              HierarchyProgress progress, void* user) {
+  validate_mesh(mesh, "hierarchy mesh");
+  MeshHierarchy hierarchy = decimate(mesh, options.coarse_vertex_counts, progress, user);
+  for (int l = 0; l < hierarchy.finest(); ++l)
+    hierarchy.expansion_batches.push_back(
+        expansion_batches(input_faces(hierarchy.levels[l]), hierarchy.collapses,
+                          hierarchy.first_collapse[l + 1], hierarchy.first_collapse[l]));
+  if (progress && !progress(user, 1.0, "expansion coloring"))
+    fail(Status::cancelled, "hierarchy: cancelled by the progress callback");
+  check_hierarchy(hierarchy);
+  return hierarchy;
+}
+
+}  // namespace progsim

@@ -1,0 +1,82 @@
+#pragma once
+/// @file A multiresolution hierarchy of a triangle mesh (PSQ §4.1): the user's mesh and its
+/// decimated levels, the intrinsic maps between them, the collapse records that refine one
+/// level into the next, and the batches in which those refinements can run in parallel.
+#include <array>
+#include <vector>
+
+#include "hierarchy/surface_anchor.hpp"
+#include "mesh/triangle_mesh.hpp"
+
+namespace progsim {
+
+/// A face as three input-mesh vertex ids, oriented like the mesh.
+using FaceCorners = std::array<int, 3>;
+
+/// One edge collapse of the decimation: `removed` merged into `kept` (input-mesh vertex ids).
+/// Undoing it (a vertex split) turns the faces `after` back into the faces `before`.
+struct CollapseRecord {
+  int removed = -1;
+  int kept = -1;
+  std::vector<FaceCorners> before;  ///< faces around removed ∪ kept before the collapse
+  std::vector<FaceCorners> after;   ///< faces around kept after the collapse
+};
+
+/// One level: its rest mesh (the decimated geometry when the level was reached) and, per
+/// level vertex, the input-mesh vertex it continues.
+struct HierarchyLevel {
+  TriangleMesh rest;
+  std::vector<int> input_vertex;  ///< (|V_l|), increasing
+};
+
+/// Levels 0 (coarsest) … L (the user's mesh, L = levels.size() − 1).
+struct MeshHierarchy {
+  std::vector<HierarchyLevel> levels;
+  /// to_next[l] (l < L): each vertex of level l+1 anchored on a face of level l (U^l_{l+1}).
+  std::vector<SurfaceAnchors> to_next;
+  /// to_finest[l] (l < L): each vertex of level L anchored on a face of level l (U^l).
+  std::vector<SurfaceAnchors> to_finest;
+  /// Every collapse, in decimation order (fine to coarse).
+  std::vector<CollapseRecord> collapses;
+  /// first_collapse[l]: index in `collapses` of the first collapse that leaves level l
+  /// (size L + 1; first_collapse[L] = 0). Collapses [first_collapse[l+1], first_collapse[l])
+  /// turn level l+1 into level l.
+  std::vector<int> first_collapse;
+  /// expansion_batches[l] (l < L): the vertex splits refining level l into l+1, as indices
+  /// into `collapses`, grouped in batches that can run in parallel, to be applied in order
+  /// (PSQ §4.4.4, Algorithms 6–7).
+  std::vector<std::vector<std::vector<int>>> expansion_batches;
+
+  int num_levels() const { return static_cast<int>(levels.size()); }
+  int finest() const { return num_levels() - 1; }
+};
+
+/// How to build a hierarchy.
+struct HierarchyOptions {
+  /// Vertex counts of the levels below the user's mesh, any order, each distinct and below
+  /// its vertex count. Empty: a single-level hierarchy.
+  std::vector<int> coarse_vertex_counts;
+};
+
+/// Level sizes shrinking by a constant factor: round(n / ratio^k) for k = count … 1, coarsest
+/// first (the PSQ examples use about ×4 per level). Throws Error(invalid_argument) unless
+/// ratio > 1, count ≥ 1 and the coarsest size is at least 4.
+std::vector<int> geometric_level_counts(int finest_vertices, double ratio, int count);
+
+/// Progress report during a long build: fraction done in [0, 1] and a phase name. Returning
+/// false cancels (Error(cancelled)).
+using HierarchyProgress = bool (*)(void* user, double fraction, const char* phase);
+
+/// Builds the hierarchy of `mesh` (which must pass validate_mesh): decimation with
+/// probabilistic quadrics tracking the intrinsic map, then expansion coloring. Throws
+/// Error(invalid_mesh) for a mesh that fails validation or cannot be decimated that far,
+/// Error(invalid_argument) for bad vertex counts, Error(cancelled) if progress says stop.
+MeshHierarchy build_hierarchy(const TriangleMesh& mesh, const HierarchyOptions& options,
+                              HierarchyProgress progress = nullptr, void* user = nullptr);
+
+/// Checks the invariants a hierarchy read from elsewhere must satisfy (level sizes, anchors in
+/// range with valid weights, record ids in range, batches covering each level's collapses).
+/// Throws Error(invalid_argument) naming the first violation.
+void check_hierarchy(const MeshHierarchy& hierarchy);
+
+}  // namespace progsim

@@ -1,0 +1,83 @@
+// Hot paths that must not allocate (STYLE 14): the prolongation operators' apply() and
+// offsets(), called once per Newton iteration of a preview. A separate executable counts every
+// malloc/calloc/realloc in the process (interposing glibc's allocator, which libprogsim and
+// Eigen reach through malloc) around the calls; sanitizer builds, which own malloc, skip it.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <atomic>
+#include <cstddef>
+
+#include "hierarchy/barycentric_prolongation.hpp"
+#include "hierarchy/level_prolongation.hpp"
+#include "hierarchy/mesh_hierarchy.hpp"
+#include "mesh/mesh_generators.hpp"
+
+extern "C" {
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t count, std::size_t size);
+void* __libc_realloc(void* pointer, std::size_t size);
+void __libc_free(void* pointer);
+}
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+extern "C" {
+void* malloc(std::size_t size) {
+  ++allocations;
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t count, std::size_t size) {
+  ++allocations;
+  return __libc_calloc(count, size);
+}
+void* realloc(void* pointer, std::size_t size) {
+  ++allocations;
+  return __libc_realloc(pointer, size);
+}
+void free(void* pointer) {
+  __libc_free(pointer);
+}
+}
+
+using namespace progsim;
+
+namespace {
+
+/// Allocations made by `work`.
+template <class Work>
+long allocations_in(Work&& work) {
+  const long before = allocations.load();
+  work();
+  return allocations.load() - before;
+}
+
+TEST(AllocationFree, ProlongationApplyAndOffsets) {
+  // 3721 fine vertices: above the 2048 at which the loops go parallel.
+  const TriangleMesh sheet = make_grid(1.0, 1.0, 60, 60);
+  HierarchyOptions options;
+  options.coarse_vertex_counts = {150};
+  const MeshHierarchy h = build_hierarchy(sheet, options);
+  const ShellProlongation shell = direct_prolongation(h, 0);
+  const BarycentricProlongation linear(h.levels[0].rest.faces, h.levels[0].rest.num_vertices(),
+                                       h.to_finest[0]);
+  const Positions coarse = h.levels[0].rest.vertices * 1.01;
+  Positions fine(sheet.num_vertices(), 3), offsets(sheet.num_vertices(), 3);
+  ASSERT_GT(allocations.load(), 0) << "the counting allocator is not in use";
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    shell.apply(coarse, fine);  // warm-up: OpenMP creates its thread team once
+    const long count = allocations_in([&] {
+      for (int k = 0; k < 10; ++k) {
+        shell.apply(coarse, fine);
+        shell.offsets(coarse, offsets);
+        linear.apply(coarse, fine);
+      }
+    });
+    EXPECT_EQ(count, 0) << threads << " thread(s)";
+  }
+}
+
+}  // namespace
