@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 2
+#define PS_VERSION_MINOR 3
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -104,6 +104,17 @@ PS_API const char* ps_status_name(int32_t status);
  */
 PS_API const char* ps_last_error(void);
 
+/**
+ * Progress of long calls: called after each unit of work with done/total units and the
+ * phase ("decimation" and "expansion coloring" while a hierarchy is built, in percent;
+ * "preview" for ps_sim_step_preview(), in steps; refinement will report "refine"). Return 0
+ * to continue, non-zero to cancel: the call then returns PS_ERROR_CANCELLED (also when the
+ * last unit was done), keeping the state of the last completed step. The callback must not
+ * call the simulation that is running (such calls return PS_ERROR_WRONG_CALL_ORDER); other
+ * handles and the handle-free calls are fine.
+ */
+typedef int32_t (*ps_progress_fn)(void* user_data, int32_t done, int32_t total, const char* phase);
+
 /* ---------------------------------------------------------------- hierarchy ------------ */
 
 /** A mesh hierarchy: level 0 is the coarsest, level num_levels − 1 the user's mesh. */
@@ -117,6 +128,10 @@ typedef struct ps_hierarchy_def {
   const int32_t* coarse_vertex_counts;
   /** Number of entries in coarse_vertex_counts. Default 0. */
   int32_t num_coarse_levels;
+  /** Nullable (default): called during decimation (see ps_progress_fn). */
+  ps_progress_fn progress;
+  /** Passed back to progress unchanged. Default NULL. */
+  void* progress_user_data;
   int32_t internal_cookie; /**< set by ps_hierarchy_def_init(); do not touch */
 } ps_hierarchy_def;
 
@@ -126,14 +141,17 @@ PS_API void ps_hierarchy_def_init(ps_hierarchy_def* def);
 /**
  * Builds a hierarchy from a triangle mesh. The mesh is validated first (NaN/Inf
  * coordinates, out-of-range indices, degenerate faces, non-manifold edges, unreferenced
- * vertices → PS_ERROR_INVALID_MESH naming the first offender).
+ * vertices → PS_ERROR_INVALID_MESH naming the first offender). Coarse levels come from
+ * quadric edge collapse with probabilistic quadrics (PSQ §4.1), each with the intrinsic map
+ * and shell prolongation to the finest level (PSQ §4.3) and its expansion batches (§4.4.4).
+ * Vertex counts must be distinct, at least 4 and below the mesh's (PS_ERROR_INVALID_ARGUMENT);
+ * a surface that cannot be decimated that far while staying valid gives
+ * PS_ERROR_INVALID_MESH saying where decimation stopped.
  * @param def          Nullable (defaults). Borrowed during the call.
  * @param vertices     (num_vertices × 3) positions, m. Copied.
  * @param faces        (num_faces × 3) vertex indices. Copied.
  * @param out          receives the new hierarchy; caller owns, destroy with
  *                     ps_hierarchy_destroy(). Unchanged on failure.
- * Multi-level hierarchies (num_coarse_levels > 0) return PS_ERROR_UNSUPPORTED in this
- * version; the call and its meaning stay when they arrive.
  */
 PS_API int32_t ps_hierarchy_create(const ps_hierarchy_def* def, const double* vertices,
                                    size_t num_vertices, const int32_t* faces, size_t num_faces,
@@ -167,6 +185,32 @@ PS_API int32_t ps_hierarchy_get_rest_positions(const ps_hierarchy* hierarchy, in
 /** Faces of a level: (m × 3) indices into out[capacity]; *count = 3m. out is nullable. */
 PS_API int32_t ps_hierarchy_get_faces(const ps_hierarchy* hierarchy, int32_t level, int32_t* out,
                                       size_t capacity, size_t* count);
+
+/**
+ * Prolongs positions of `level` to the finest level with the shell prolongation
+ * x = U x_l + a(x_l) (PSQ eq. 9): rigid motions of the coarse shape carry over exactly and the
+ * rest shape of the level gives the finest rest shape.
+ * @param positions  (n_level × 3) doubles, m; count = 3 n_level. Borrowed.
+ * @param out        (n_finest × 3) doubles into out[capacity]; *out_count = 3 n_finest.
+ *                   Nullable (size query). The finest level copies positions through.
+ */
+PS_API int32_t ps_hierarchy_prolong(const ps_hierarchy* hierarchy, int32_t level,
+                                    const double* positions, size_t count, double* out,
+                                    size_t capacity, size_t* out_count);
+
+/** Number of parallel vertex-split batches that refine `level` into level + 1 (PSQ §4.4.4)
+ *  into *out. PS_ERROR_OUT_OF_RANGE for the finest level. */
+PS_API int32_t ps_hierarchy_num_expansion_batches(const ps_hierarchy* hierarchy, int32_t level,
+                                                  int32_t* out);
+
+/** Saves the hierarchy to a file, so that decimation is paid once (progsim's binary
+ *  hierarchy format; the CLI's `progsim hierarchy` writes the same). */
+PS_API int32_t ps_hierarchy_save(const ps_hierarchy* hierarchy, const char* path);
+
+/** Loads a hierarchy saved by ps_hierarchy_save(). A missing, truncated or corrupt file
+ *  gives PS_ERROR_IO or PS_ERROR_INVALID_ARGUMENT naming the path and the problem.
+ *  @param out  receives the new hierarchy; caller owns (ps_hierarchy_destroy()). */
+PS_API int32_t ps_hierarchy_load(const char* path, ps_hierarchy** out);
 
 /* ---------------------------------------------------------------- simulation ----------- */
 
@@ -231,7 +275,8 @@ PS_API void ps_sim_def_init(ps_sim_def* def);
  * @param out receives the simulation; caller owns, destroy with ps_sim_destroy().
  * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_INVALID_ARGUMENT (a parameter NaN or out of
  * its range, naming it), PS_ERROR_INVALID_SCENE (a pinned vertex out of range),
- * PS_ERROR_NULL_ARGUMENT.
+ * PS_ERROR_NULL_ARGUMENT. Simulations of multi-level hierarchies (progressive preview and
+ * refinement) are not available in this version: PS_ERROR_UNSUPPORTED.
  */
 PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* def, ps_sim** out);
 
@@ -260,16 +305,6 @@ PS_API const char* ps_sim_last_error(const ps_sim* sim);
 /** The hierarchy this simulation runs on. Borrowed until ps_sim_destroy(). Calls on it
  *  store their error message in it, so it belongs to the thread that uses the simulation. */
 PS_API int32_t ps_sim_hierarchy(const ps_sim* sim, const ps_hierarchy** out);
-
-/**
- * Progress of long calls: called after each unit of work with done/total units and the
- * phase ("preview" for ps_sim_step_preview(); refinement will report "refine"). Return 0 to
- * continue, non-zero to cancel: the call then returns PS_ERROR_CANCELLED (also when the
- * last unit was done), keeping the state of the last completed step. The callback must not
- * call the simulation that is running (such calls return PS_ERROR_WRONG_CALL_ORDER); other
- * handles and the handle-free calls are fine.
- */
-typedef int32_t (*ps_progress_fn)(void* user_data, int32_t done, int32_t total, const char* phase);
 
 /** Installs (or with fn = NULL removes) the progress callback. user_data is passed back
  *  unchanged (borrowed; the caller keeps it alive while installed). */

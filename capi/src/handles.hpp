@@ -7,15 +7,20 @@
 #include <vector>
 
 #include "api_guard.hpp"
+#include "hierarchy/mesh_hierarchy.hpp"
+#include "hierarchy/shell_prolongation.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "progsim.h"
 #include "scene/scene.hpp"
 #include "sim/direct_simulation.hpp"
 
-/// A mesh hierarchy; levels[0] is the coarsest, levels.back() the user's mesh.
+/// A mesh hierarchy (levels[0] the coarsest, the last one the user's mesh) with the direct
+/// shell prolongation of every coarse level to the finest. Immutable once created.
 struct ps_hierarchy {
-  std::vector<progsim::TriangleMesh> levels;
-  mutable std::atomic<int> simulations{0};  ///< live simulations created on it
+  explicit ps_hierarchy(progsim::MeshHierarchy built);
+  progsim::MeshHierarchy mesh_hierarchy;
+  std::vector<progsim::ShellProlongation> to_finest;  ///< P^l, l < finest (PSQ eq. 9)
+  mutable std::atomic<int> simulations{0};            ///< live simulations created on it
   mutable std::string last_error;
 };
 

@@ -1,12 +1,19 @@
-// ps_hierarchy_*: building a mesh hierarchy and reading its levels.
+// ps_hierarchy_*: building, saving and loading a mesh hierarchy, reading its levels and
+// prolonging positions to the finest level.
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <type_traits>
 
 #include "handles.hpp"
+#include "hierarchy/hierarchy_io.hpp"
+#include "hierarchy/level_prolongation.hpp"
 #include "mesh/mesh_io.hpp"
-#include "mesh/mesh_validation.hpp"
+
+ps_hierarchy::ps_hierarchy(progsim::MeshHierarchy built) : mesh_hierarchy(std::move(built)) {
+  for (int l = 0; l < mesh_hierarchy.finest(); ++l)
+    to_finest.push_back(progsim::direct_prolongation(mesh_hierarchy, l));
+}
 
 namespace progsim::capi {
 namespace {
@@ -16,38 +23,51 @@ static_assert(std::is_same_v<Faces::Scalar, int32_t>, "progsim::Faces must hold 
 
 constexpr int32_t kHierarchyCookie = 0x50534844;  // "PSHD"
 
-/// Rejects defs nobody initialised and level requests this version cannot serve yet.
-void check_hierarchy_def(const ps_hierarchy_def* def) {
-  if (!def) return;
+/// The build options of def (nullable: a single level); rejects defs nobody initialised.
+HierarchyOptions hierarchy_options(const ps_hierarchy_def* def) {
+  HierarchyOptions options;
+  if (!def) return options;
   if (def->internal_cookie != kHierarchyCookie)
     api_fail(PS_ERROR_UNINITIALIZED_DEF,
              "the ps_hierarchy_def was not filled by ps_hierarchy_def_init()");
-  if (def->num_coarse_levels < 0)
-    api_fail(PS_ERROR_INVALID_ARGUMENT,
-             "num_coarse_levels = " + std::to_string(def->num_coarse_levels) + " is negative");
-  if (def->num_coarse_levels > 0)
-    api_fail(PS_ERROR_UNSUPPORTED,
-             "coarse levels are not available in this version: only the single-level hierarchy "
-             "(num_coarse_levels = 0) can be built");
+  if (def->num_coarse_levels < 0 || def->num_coarse_levels > 64)
+    api_fail(
+        PS_ERROR_INVALID_ARGUMENT,
+        "num_coarse_levels = " + std::to_string(def->num_coarse_levels) + " must be in 0 to 64");
+  if (def->num_coarse_levels > 0) require(def->coarse_vertex_counts, "coarse_vertex_counts");
+  options.coarse_vertex_counts.assign(def->coarse_vertex_counts,
+                                      def->coarse_vertex_counts + def->num_coarse_levels);
+  return options;
 }
 
-/// Validates mesh and wraps it as a one-level hierarchy.
-std::unique_ptr<ps_hierarchy> single_level(TriangleMesh mesh) {
-  validate_mesh(mesh, "mesh");
-  auto hierarchy = std::make_unique<ps_hierarchy>();
-  hierarchy->levels.push_back(std::move(mesh));
-  return hierarchy;
+/// Forwards decimation progress (fraction) to the def's callback as percent.
+struct ProgressForward {
+  ps_progress_fn fn;
+  void* user_data;
+  static bool call(void* self, double fraction, const char* phase) {
+    const auto* forward = static_cast<const ProgressForward*>(self);
+    return forward->fn(forward->user_data, static_cast<int32_t>(std::lround(fraction * 100.0)), 100,
+                       phase) == 0;
+  }
+};
+
+/// Validates mesh and builds the hierarchy def asks for.
+std::unique_ptr<ps_hierarchy> build(const ps_hierarchy_def* def, const TriangleMesh& mesh) {
+  const HierarchyOptions options = hierarchy_options(def);
+  ProgressForward forward{def ? def->progress : nullptr, def ? def->progress_user_data : nullptr};
+  return std::make_unique<ps_hierarchy>(
+      build_hierarchy(mesh, options, forward.fn ? ProgressForward::call : nullptr, &forward));
 }
 
 }  // namespace
 
 const TriangleMesh& level_mesh(const ps_hierarchy& hierarchy, int32_t level) {
-  const auto n = static_cast<int32_t>(hierarchy.levels.size());
+  const auto n = static_cast<int32_t>(hierarchy.mesh_hierarchy.levels.size());
   if (level < 0 || level >= n)
     api_fail(PS_ERROR_OUT_OF_RANGE, "level " + std::to_string(level) +
                                         " does not exist (levels 0 to " + std::to_string(n - 1) +
                                         ")");
-  return hierarchy.levels[level];
+  return hierarchy.mesh_hierarchy.levels[level].rest;
 }
 
 }  // namespace progsim::capi
@@ -70,7 +90,6 @@ PS_API int32_t ps_hierarchy_create(const ps_hierarchy_def* def, const double* ve
     require(out, "out");
     require(vertices, "vertices");
     require(faces, "faces");
-    check_hierarchy_def(def);
     constexpr size_t kMax = static_cast<size_t>(std::numeric_limits<int32_t>::max() / 3);
     if (num_vertices == 0 || num_faces == 0 || num_vertices > kMax || num_faces > kMax)
       api_fail(PS_ERROR_INVALID_MESH, "a mesh needs 1 to " + std::to_string(kMax) +
@@ -81,7 +100,7 @@ PS_API int32_t ps_hierarchy_create(const ps_hierarchy_def* def, const double* ve
     mesh.vertices = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
         vertices, static_cast<Eigen::Index>(num_vertices), 3);
     mesh.faces = Eigen::Map<const Faces>(faces, static_cast<Eigen::Index>(num_faces), 3);
-    *out = single_level(std::move(mesh)).release();
+    *out = build(def, mesh).release();
   });
 }
 
@@ -90,8 +109,24 @@ PS_API int32_t ps_hierarchy_create_from_file(const ps_hierarchy_def* def, const 
   return guarded(nullptr, "ps_hierarchy_create_from_file", [&] {
     require(out, "out");
     require(path, "path");
-    check_hierarchy_def(def);
-    *out = single_level(read_mesh(path)).release();
+    hierarchy_options(def);  // a bad def is reported before the file is read
+    *out = build(def, read_mesh(path)).release();
+  });
+}
+
+PS_API int32_t ps_hierarchy_load(const char* path, ps_hierarchy** out) {
+  return guarded(nullptr, "ps_hierarchy_load", [&] {
+    require(out, "out");
+    require(path, "path");
+    *out = std::make_unique<ps_hierarchy>(load_hierarchy(path)).release();
+  });
+}
+
+PS_API int32_t ps_hierarchy_save(const ps_hierarchy* hierarchy, const char* path) {
+  return guarded(hierarchy ? &hierarchy->last_error : nullptr, "ps_hierarchy_save", [&] {
+    require(hierarchy, "hierarchy");
+    require(path, "path");
+    save_hierarchy(hierarchy->mesh_hierarchy, path);
   });
 }
 
@@ -114,7 +149,7 @@ PS_API int32_t ps_hierarchy_num_levels(const ps_hierarchy* hierarchy, int32_t* o
   return guarded(hierarchy ? &hierarchy->last_error : nullptr, "ps_hierarchy_num_levels", [&] {
     require(hierarchy, "hierarchy");
     require(out, "out");
-    *out = static_cast<int32_t>(hierarchy->levels.size());
+    *out = hierarchy->mesh_hierarchy.num_levels();
   });
 }
 
@@ -146,6 +181,42 @@ PS_API int32_t ps_hierarchy_get_faces(const ps_hierarchy* hierarchy, int32_t lev
     const TriangleMesh& mesh = level_mesh(*hierarchy, level);
     copy_out(mesh.faces.data(), static_cast<size_t>(mesh.faces.size()), out, capacity, count);
   });
+}
+
+PS_API int32_t ps_hierarchy_prolong(const ps_hierarchy* hierarchy, int32_t level,
+                                    const double* positions, size_t count, double* out,
+                                    size_t capacity, size_t* out_count) {
+  return guarded(hierarchy ? &hierarchy->last_error : nullptr, "ps_hierarchy_prolong", [&] {
+    require(hierarchy, "hierarchy");
+    require(positions, "positions");
+    const TriangleMesh& mesh = level_mesh(*hierarchy, level);
+    if (count != static_cast<size_t>(mesh.vertices.size()))
+      api_fail(PS_ERROR_INVALID_ARGUMENT, "positions has " + std::to_string(count) +
+                                              " doubles; level " + std::to_string(level) +
+                                              " needs " + std::to_string(mesh.vertices.size()) +
+                                              " (3 per vertex)");
+    const Positions coarse = Eigen::Map<const Positions>(positions, mesh.num_vertices(), 3);
+    if (!coarse.allFinite())
+      api_fail(PS_ERROR_INVALID_ARGUMENT, "positions contain NaN or infinite values");
+    const Positions fine =
+        level == hierarchy->mesh_hierarchy.finest() ? coarse : hierarchy->to_finest[level](coarse);
+    copy_out(fine.data(), static_cast<size_t>(fine.size()), out, capacity, out_count);
+  });
+}
+
+PS_API int32_t ps_hierarchy_num_expansion_batches(const ps_hierarchy* hierarchy, int32_t level,
+                                                  int32_t* out) {
+  return guarded(
+      hierarchy ? &hierarchy->last_error : nullptr, "ps_hierarchy_num_expansion_batches", [&] {
+        require(hierarchy, "hierarchy");
+        require(out, "out");
+        level_mesh(*hierarchy, level);  // range check
+        const MeshHierarchy& h = hierarchy->mesh_hierarchy;
+        if (level == h.finest())
+          api_fail(PS_ERROR_OUT_OF_RANGE,
+                   "the finest level " + std::to_string(level) + " is not refined further");
+        *out = static_cast<int32_t>(h.expansion_batches[level].size());
+      });
 }
 
 }  // extern "C"

@@ -16,7 +16,7 @@ std::unique_ptr<ps_sim> wrap(const ps_hierarchy* hierarchy, Scene scene,
   sim->hierarchy = hierarchy;
   sim->scene = std::move(scene);
   sim->simulation = std::move(simulation);
-  sim->records.resize(hierarchy->levels.size());
+  sim->records.resize(hierarchy->mesh_hierarchy.levels.size());
   return sim;
 }
 
@@ -32,8 +32,7 @@ std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
 /// A simulation of a parsed scene that owns the hierarchy of its merged bodies.
 std::unique_ptr<ps_sim> sim_from_scene(Scene scene) {
   auto simulation = std::make_unique<DirectSimulation>(scene);
-  auto hierarchy = std::make_unique<ps_hierarchy>();
-  hierarchy->levels.push_back(simulation->model().rest);
+  auto hierarchy = std::make_unique<ps_hierarchy>(build_hierarchy(simulation->model().rest, {}));
   auto sim = wrap(hierarchy.get(), std::move(scene), std::move(simulation));
   sim->owned_hierarchy = std::move(hierarchy);
   return sim;
@@ -66,7 +65,11 @@ PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* de
     require(out, "out");
     ps_sim_def defaults;
     ps_sim_def_init(&defaults);
-    const TriangleMesh& finest = hierarchy->levels.back();
+    if (hierarchy->mesh_hierarchy.num_levels() > 1)
+      api_fail(PS_ERROR_UNSUPPORTED,
+               "simulations of multi-level hierarchies (progressive preview and refinement) are "
+               "not available in this version; build the hierarchy with num_coarse_levels = 0");
+    const TriangleMesh& finest = hierarchy->mesh_hierarchy.levels.back().rest;
     *out = make_sim(hierarchy, scene_from_def(def ? *def : defaults, finest)).release();
   });
 }

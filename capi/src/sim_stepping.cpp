@@ -57,9 +57,9 @@ PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps) {
 PS_API int32_t ps_sim_refine(ps_sim* sim) {
   return guarded(error_slot(sim), "ps_sim_refine", [&] {
     require_idle(sim);
-    const auto finest = static_cast<int32_t>(sim->hierarchy->levels.size()) - 1;
-    // Hierarchies have a single level until multi-level ones arrive (PS_ERROR_UNSUPPORTED at
-    // creation), so every simulation is at its finest level.
+    const auto finest = sim->hierarchy->mesh_hierarchy.finest();
+    // Simulations of multi-level hierarchies are refused at creation (PS_ERROR_UNSUPPORTED)
+    // until progressive stepping arrives, so every simulation is at its finest level.
     if (sim->level >= finest)
       api_fail(PS_ERROR_OUT_OF_RANGE, "already at the finest level " + std::to_string(finest) +
                                           "; there is nothing to refine");

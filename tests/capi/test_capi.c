@@ -165,11 +165,16 @@ static void test_misuse(void) {
   CHECK_ERROR(ps_hierarchy_create(&hdef, kGridVertices, 9, kGridFaces, 8, &h),
               PS_ERROR_UNINITIALIZED_DEF, ps_last_error(), "ps_hierarchy_def_init");
   ps_hierarchy_def_init(&hdef);
-  const int32_t coarse[1] = {4};
+  const int32_t coarse[1] = {9};
   hdef.coarse_vertex_counts = coarse;
   hdef.num_coarse_levels = 1;
-  CHECK_ERROR(ps_hierarchy_create(&hdef, kGridVertices, 9, kGridFaces, 8, &h), PS_ERROR_UNSUPPORTED,
-              ps_last_error(), "coarse levels");
+  CHECK_ERROR(ps_hierarchy_create(&hdef, kGridVertices, 9, kGridFaces, 8, &h),
+              PS_ERROR_INVALID_ARGUMENT, ps_last_error(), "below the mesh's 9 vertices");
+  hdef.coarse_vertex_counts = NULL;
+  CHECK_ERROR(ps_hierarchy_create(&hdef, kGridVertices, 9, kGridFaces, 8, &h),
+              PS_ERROR_NULL_ARGUMENT, ps_last_error(), "coarse_vertex_counts");
+  CHECK_ERROR(ps_hierarchy_load("/nonexistent/h.bin", &h), PS_ERROR_IO, ps_last_error(),
+              "/nonexistent/h.bin");
   CHECK_ERROR(ps_hierarchy_create_from_file(NULL, "/nonexistent/mesh.obj", &h), PS_ERROR_IO,
               ps_last_error(), "/nonexistent/mesh.obj");
 
@@ -295,6 +300,69 @@ static void test_scene_file(void) {
   ps_sim_destroy(sim);
 }
 
+/* Counts progress reports; cancels once `cancel_at` percent is reached (if positive). */
+static int32_t count_reports(void* user_data, int32_t done, int32_t total, const char* phase) {
+  int32_t* state = (int32_t*)user_data; /* [reports, cancel_at] */
+  (void)phase;
+  ++state[0];
+  return state[1] > 0 && done * 100 >= state[1] * total;
+}
+
+/* A decimated hierarchy: sizes, exact rest recovery through ps_hierarchy_prolong, progress,
+ * cancellation, save/load, and the calls a multi-level hierarchy refuses. */
+static void test_levels(void) {
+  ps_hierarchy_def hdef;
+  ps_hierarchy_def_init(&hdef);
+  const int32_t coarse[2] = {30, 110};
+  int32_t progress[2] = {0, 0};
+  hdef.coarse_vertex_counts = coarse;
+  hdef.num_coarse_levels = 2;
+  hdef.progress = count_reports;
+  hdef.progress_user_data = progress;
+  ps_hierarchy* h = NULL;
+  const char* mesh = path_in_source("scenes/meshes/square_cloth.obj");
+  CHECK(ps_hierarchy_create_from_file(&hdef, mesh, &h) == PS_OK);
+  if (!h) return;
+  CHECK(progress[0] > 10);
+  int32_t levels = 0, batches = 0;
+  size_t nv = 0, count = 0;
+  CHECK(ps_hierarchy_num_levels(h, &levels) == PS_OK && levels == 3);
+  CHECK(ps_hierarchy_level_size(h, 0, &nv, NULL) == PS_OK && nv == 30);
+  CHECK(ps_hierarchy_num_expansion_batches(h, 0, &batches) == PS_OK && batches > 0);
+  CHECK_ERROR(ps_hierarchy_num_expansion_batches(h, 2, &batches), PS_ERROR_OUT_OF_RANGE,
+              ps_hierarchy_last_error(h), "finest");
+  double coarse_rest[90], fine[3 * 441], prolonged[3 * 441];
+  CHECK(ps_hierarchy_get_rest_positions(h, 0, coarse_rest, 90, &count) == PS_OK);
+  CHECK(ps_hierarchy_get_rest_positions(h, 2, fine, 3 * 441, &count) == PS_OK);
+  CHECK(ps_hierarchy_prolong(h, 0, coarse_rest, 90, prolonged, 3 * 441, &count) == PS_OK);
+  double worst = 0.0;
+  for (size_t i = 0; i < 3 * 441; ++i) worst = fmax(worst, fabs(prolonged[i] - fine[i]));
+  CHECK(count == 3 * 441 && worst < 1e-9);
+  CHECK_ERROR(ps_hierarchy_prolong(h, 0, coarse_rest, 89, prolonged, 3 * 441, &count),
+              PS_ERROR_INVALID_ARGUMENT, ps_hierarchy_last_error(h), "needs 90");
+  ps_sim* sim = NULL;
+  CHECK_ERROR(ps_sim_create(h, NULL, &sim), PS_ERROR_UNSUPPORTED, ps_last_error(), "multi-level");
+
+  char saved[4096];
+  snprintf(saved, sizeof saved, "%s/test_capi_levels.hierarchy",
+           getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+  CHECK(ps_hierarchy_save(h, saved) == PS_OK);
+  ps_hierarchy* loaded = NULL;
+  CHECK(ps_hierarchy_load(saved, &loaded) == PS_OK);
+  double again[3 * 441];
+  CHECK(ps_hierarchy_prolong(loaded, 0, coarse_rest, 90, again, 3 * 441, &count) == PS_OK);
+  CHECK(memcmp(again, prolonged, sizeof again) == 0);
+  remove(saved);
+  ps_hierarchy_destroy(loaded);
+  ps_hierarchy_destroy(h);
+
+  progress[1] = 50;
+  h = NULL;
+  CHECK_ERROR(ps_hierarchy_create_from_file(&hdef, mesh, &h), PS_ERROR_CANCELLED, ps_last_error(),
+              "cancelled");
+  CHECK(h == NULL);
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_capi SOURCE_DIR\n");
@@ -306,6 +374,7 @@ int main(int argc, char** argv) {
   test_misuse();
   test_parameter_listing_mode_and_lifetimes();
   test_scene_file();
+  test_levels();
   if (failures)
     fprintf(stderr, "%d checks failed\n", failures);
   else

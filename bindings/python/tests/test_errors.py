@@ -159,8 +159,8 @@ def test_create_errors(small, tmp_path):
         progsim.Simulation(small, poisson_ratio=0.5)
     with pytest.raises(progsim.InvalidSceneError, match="vertex 99"):
         progsim.Simulation(small, pinned=[99])
-    with pytest.raises(progsim.UnsupportedError, match="coarse levels"):
-        progsim.Hierarchy(*grid(), coarse_vertex_counts=[4])
+    with pytest.raises(progsim.InvalidArgumentError, match="below the mesh's 9 vertices"):
+        progsim.Hierarchy(*grid(), coarse_vertex_counts=[9])
     with pytest.raises(progsim.ProgsimIOError, match="nonexistent"):
         progsim.Hierarchy.from_file(tmp_path / "nonexistent.obj")
     with pytest.raises(progsim.ProgsimIOError):

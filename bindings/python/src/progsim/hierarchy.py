@@ -9,12 +9,15 @@ import numpy as np
 
 from ._native import (
     NativeObject,
+    ProgressArg,
+    ProgressRun,
     as_faces,
     as_indices,
     as_vertices,
     check_create,
     int32_value,
     fetch_rows,
+    output_array,
 )
 from ._progsim_cffi import ffi, lib
 
@@ -26,26 +29,46 @@ __all__ = ["Hierarchy"]
 PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 
 
-def _hierarchy_def(coarse_vertex_counts: Optional[Sequence[int]]):
-    """A filled ``ps_hierarchy_def*`` (NULL for the defaults) and the buffer it borrows."""
-    if coarse_vertex_counts is None:
-        return ffi.NULL, None
-    counts = as_indices(coarse_vertex_counts, "coarse_vertex_counts", "(k,)")
+def _hierarchy_def(coarse_vertex_counts: Optional[Sequence[int]], run: ProgressRun):
+    """A filled ``ps_hierarchy_def*`` with the progress trampoline installed, and the buffers
+    it borrows (keep them alive during the call)."""
     definition = ffi.new("ps_hierarchy_def*")
     lib.ps_hierarchy_def_init(definition)
+    counts = as_indices(
+        [] if coarse_vertex_counts is None else coarse_vertex_counts, "coarse_vertex_counts", "(k,)"
+    )
     buffer = ffi.from_buffer("int32_t[]", counts) if counts.size else ffi.NULL
     definition.coarse_vertex_counts = buffer
     definition.num_coarse_levels = int(counts.size)
-    return definition, (counts, buffer)
+    handle = ffi.new_handle(run)
+    definition.progress = lib._progsim_progress
+    definition.progress_user_data = handle
+    return definition, (counts, buffer, handle)
+
+
+def _create(function, coarse_vertex_counts, progress: ProgressArg, *args: Any) -> "ffi.CData":
+    """Runs a ps_hierarchy_create* call with a def and progress reporting; returns the handle."""
+    run = ProgressRun(progress)
+    definition, keep = _hierarchy_def(coarse_vertex_counts, run)
+    out = ffi.new("ps_hierarchy**")
+    try:
+        status = function(definition, *args, out)
+    finally:
+        run.close()
+    del keep
+    run.reraise()
+    check_create(status)
+    return out[0]
 
 
 class Hierarchy(NativeObject):
     """A mesh hierarchy: level 0 is the coarsest, level ``num_levels - 1`` the input mesh.
 
     Build one from arrays (``Hierarchy(vertices, faces)``) or from a file
-    (:meth:`from_file`). This version builds single-level hierarchies (the input mesh
-    itself); ``coarse_vertex_counts`` raises :class:`~progsim.UnsupportedError` until
-    multi-level hierarchies arrive.
+    (:meth:`from_file`), or load a saved one (:meth:`load`). With ``coarse_vertex_counts``
+    the mesh is decimated into coarser levels (quadric edge collapse with probabilistic
+    quadrics, PSQ §4.1), each with the shell prolongation to the finest level (:meth:`prolong`,
+    PSQ eq. 9) and its parallel expansion batches (PSQ §4.4.4).
 
     Level arguments accept negative values counted from the finest level (``-1`` is the
     finest), like Python sequence indices.
@@ -63,6 +86,7 @@ class Hierarchy(NativeObject):
         faces: Any,
         *,
         coarse_vertex_counts: Optional[Sequence[int]] = None,
+        progress: ProgressArg = False,
     ) -> None:
         """Builds a hierarchy from a triangle mesh, validating it first.
 
@@ -71,39 +95,43 @@ class Hierarchy(NativeObject):
                 (no copy if it already is).
             faces: (m, 3) vertex indices, counter-clockwise seen from the front; converted to
                 C-contiguous int32 (no copy if it already is).
-            coarse_vertex_counts: target vertex counts of the coarser levels, increasing
-                (not supported yet).
+            coarse_vertex_counts: vertex counts of the coarser levels (distinct, each at least
+                4 and below n); ``None`` or empty: a single level, the mesh itself.
+            progress: ``True`` for a tqdm bar over the decimation, ``False`` for none, or a
+                callable ``(done, total, phase) -> bool`` (percent; return True to cancel).
 
         Raises:
             InvalidMeshError: NaN/Inf coordinates, out-of-range indices, degenerate faces,
                 non-manifold edges or unreferenced vertices; the message names the first
-                offender (e.g. ``vertex 4``).
-            InvalidArgumentError: arrays of the wrong shape or dtype.
-            UnsupportedError: ``coarse_vertex_counts`` given.
+                offender (e.g. ``vertex 4``); or a surface that cannot be decimated that far.
+            InvalidArgumentError: arrays of the wrong shape or dtype, bad vertex counts.
+            CancelledError: the progress callable asked to stop.
         """
         self._init_native()
         vertex_array = as_vertices(vertices)
         face_array = as_faces(faces)
-        definition, keep = _hierarchy_def(coarse_vertex_counts)
-        out = ffi.new("ps_hierarchy**")
-        check_create(
-            lib.ps_hierarchy_create(
-                definition,
+        self._adopt(
+            _create(
+                lib.ps_hierarchy_create,
+                coarse_vertex_counts,
+                progress,
                 ffi.from_buffer("double[]", vertex_array),
                 vertex_array.shape[0],
                 ffi.from_buffer("int32_t[]", face_array),
                 face_array.shape[0],
-                out,
             )
         )
-        del keep
-        self._adopt(out[0])
 
     @classmethod
     def from_file(
-        cls, path: PathLike, *, coarse_vertex_counts: Optional[Sequence[int]] = None
+        cls,
+        path: PathLike,
+        *,
+        coarse_vertex_counts: Optional[Sequence[int]] = None,
+        progress: ProgressArg = False,
     ) -> "Hierarchy":
-        """Builds a hierarchy from an OBJ, OFF or PLY triangle mesh file (positions in metres).
+        """Builds a hierarchy from an OBJ, OFF or PLY triangle mesh file (positions in metres),
+        with the same options as :class:`Hierarchy`.
 
         Raises:
             ProgsimIOError: the file cannot be read.
@@ -111,12 +139,35 @@ class Hierarchy(NativeObject):
         """
         self = cls.__new__(cls)
         self._init_native()
-        definition, keep = _hierarchy_def(coarse_vertex_counts)
+        self._adopt(
+            _create(
+                lib.ps_hierarchy_create_from_file, coarse_vertex_counts, progress, os.fsencode(path)
+            )
+        )
+        return self
+
+    @classmethod
+    def load(cls, path: PathLike) -> "Hierarchy":
+        """Loads a hierarchy written by :meth:`save` or ``progsim hierarchy``.
+
+        Raises:
+            ProgsimIOError: missing, truncated or foreign file.
+            InvalidArgumentError: a file whose contents are inconsistent.
+        """
+        self = cls.__new__(cls)
+        self._init_native()
         out = ffi.new("ps_hierarchy**")
-        check_create(lib.ps_hierarchy_create_from_file(definition, os.fsencode(path), out))
-        del keep
+        check_create(lib.ps_hierarchy_load(os.fsencode(path), out))
         self._adopt(out[0])
         return self
+
+    def save(self, path: PathLike) -> None:
+        """Writes the hierarchy to ``path`` so that decimation is paid once.
+
+        Raises:
+            ProgsimIOError: the file cannot be written.
+        """
+        self._call(lib.ps_hierarchy_save, os.fsencode(path))
 
     @classmethod
     def _borrowed(cls, pointer: "ffi.CData", owner: "Simulation") -> "Hierarchy":
@@ -203,6 +254,40 @@ class Hierarchy(NativeObject):
             OutOfRangeError: the level does not exist.
         """
         return fetch_rows(self._call, lib.ps_hierarchy_get_faces, self._level(level), np.int32, out)
+
+    def prolong(
+        self, positions: Any, level: int = 0, out: Optional[np.ndarray] = None
+    ) -> np.ndarray:
+        """Positions of ``level`` prolonged to the finest level by the shell prolongation
+        x = U x_l + a(x_l) (PSQ eq. 9) as a float64 (n_finest, 3) array, m.
+
+        Args:
+            positions: (n_level, 3) positions of the level, m.
+            out: optional C-contiguous float64 (n_finest, 3) array to fill.
+
+        Raises:
+            OutOfRangeError: the level does not exist.
+            InvalidArgumentError: positions of the wrong shape or not finite.
+        """
+        coarse = as_vertices(positions)
+        source = ffi.from_buffer("double[]", coarse)
+        level = self._level(level)
+        count = ffi.new("size_t*")
+        self._call(lib.ps_hierarchy_prolong, level, source, coarse.size, ffi.NULL, 0, count)
+        array = output_array(out, count[0] // 3, np.float64, "out")
+        buffer = ffi.from_buffer("double[]", array, require_writable=True)
+        self._call(lib.ps_hierarchy_prolong, level, source, coarse.size, buffer, array.size, count)
+        return array
+
+    def num_expansion_batches(self, level: int = 0) -> int:
+        """Number of parallel vertex-split batches refining ``level`` into ``level + 1``.
+
+        Raises:
+            OutOfRangeError: the level does not exist or is the finest.
+        """
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_hierarchy_num_expansion_batches, self._level(level), out)
+        return int(out[0])
 
     def __repr__(self) -> str:
         if self.closed:

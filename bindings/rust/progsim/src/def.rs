@@ -12,8 +12,8 @@ use crate::{Error, Result, Status};
 /// level: the input mesh itself.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct HierarchyDef {
-    /// Target vertex count of each level below the finest, increasing (coarsest first).
-    /// Non-empty lists give [`Status::Unsupported`] in this library version.
+    /// Vertex count of each level below the finest (distinct, each at least 4 and below the
+    /// mesh's; any order). Empty: a single level.
     pub coarse_vertex_counts: Vec<i32>,
 }
 

@@ -1,4 +1,4 @@
-//! [`Hierarchy`]: a mesh and (in later versions) its coarser levels.
+//! [`Hierarchy`]: a mesh, its decimated coarser levels and the prolongations between them.
 
 use std::fmt;
 use std::path::Path;
@@ -12,8 +12,9 @@ use crate::{
     Status,
 };
 
-/// A mesh hierarchy: level 0 is the coarsest, level `num_levels() - 1` the user's mesh. This
-/// library version builds single-level hierarchies only (the mesh itself).
+/// A mesh hierarchy: level 0 is the coarsest, level `num_levels() - 1` the user's mesh.
+/// Coarse levels come from quadric edge collapse with probabilistic quadrics (PSQ §4.1), each
+/// with the shell prolongation to the finest level ([`prolong`](Self::prolong), PSQ eq. 9).
 ///
 /// Owns a C `ps_hierarchy`, destroyed on drop. [`Simulation`](crate::Simulation)s borrow
 /// it, so it cannot be dropped (or moved) while one exists.
@@ -36,7 +37,7 @@ pub struct Hierarchy {
 unsafe impl Send for Hierarchy {}
 
 impl Hierarchy {
-    /// Builds a single-level hierarchy from a triangle mesh: `vertices` (n × 3) positions in
+    /// Builds a single-level hierarchy (the mesh itself) from a triangle mesh: `vertices` (n × 3) positions in
     /// m and `faces` (m × 3) vertex indices, counter-clockwise seen from the front. Both are
     /// copied.
     ///
@@ -51,7 +52,9 @@ impl Hierarchy {
     /// As [`from_mesh`](Self::from_mesh), with levels described by `def`.
     ///
     /// # Errors
-    /// As `from_mesh`; [`Status::Unsupported`] for coarse levels in this version.
+    /// As `from_mesh`; [`Status::InvalidArgument`] for vertex counts that are not distinct,
+    /// below 4 or not below the mesh's; [`Status::InvalidMesh`] when the surface cannot be
+    /// decimated that far while staying valid.
     pub fn from_mesh_with(
         def: &HierarchyDef,
         vertices: &[[f64; 3]],
@@ -97,7 +100,7 @@ impl Hierarchy {
     /// As [`from_file`](Self::from_file), with levels described by `def`.
     ///
     /// # Errors
-    /// As `from_file`; [`Status::Unsupported`] for coarse levels in this version.
+    /// As `from_file`, and as [`from_mesh_with`](Self::from_mesh_with) for the levels.
     pub fn from_file_with(def: &HierarchyDef, path: impl AsRef<Path>) -> Result<Hierarchy> {
         check_version()?;
         let raw_def = def.to_raw()?;
@@ -108,6 +111,75 @@ impl Hierarchy {
             unsafe { sys::ps_hierarchy_create_from_file(&raw_def, path.as_ptr(), &mut out) };
         check_thread(status)?;
         Hierarchy::from_created(out)
+    }
+
+    /// Loads a hierarchy written by [`save`](Self::save) or `progsim hierarchy`.
+    ///
+    /// # Errors
+    /// [`Status::Io`] naming the path for a missing, truncated or foreign file;
+    /// [`Status::InvalidArgument`] for inconsistent contents.
+    pub fn load(path: impl AsRef<Path>) -> Result<Hierarchy> {
+        check_version()?;
+        let path = c_path(path.as_ref())?;
+        let mut out = ptr::null_mut();
+        // SAFETY: path is valid for the call; out receives an owned handle.
+        let status = unsafe { sys::ps_hierarchy_load(path.as_ptr(), &mut out) };
+        check_thread(status)?;
+        Hierarchy::from_created(out)
+    }
+
+    /// Writes the hierarchy to `path`, so that decimation is paid once.
+    ///
+    /// # Errors
+    /// [`Status::Io`] naming the path if it cannot be written.
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<()> {
+        let raw = self.handle()?;
+        let path = c_path(path.as_ref())?;
+        // SAFETY: live handle; path valid for the call.
+        let status = unsafe { sys::ps_hierarchy_save(raw, path.as_ptr()) };
+        self.check(status)
+    }
+
+    /// Positions of `level` (one `[x, y, z]` per vertex, m) prolonged to the finest level by
+    /// the shell prolongation x = U x_l + a(x_l) (PSQ eq. 9).
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the level does not exist; [`Status::InvalidArgument`] if
+    /// `positions` does not have one entry per vertex of the level or is not finite.
+    pub fn prolong(&self, level: usize, positions: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
+        let raw = self.handle()?;
+        let level = c_level(level)?;
+        read_triples(|out, capacity, count| {
+            // SAFETY: live handle; positions holds 3 len doubles; out is NULL or valid for
+            // `capacity` doubles.
+            let status = unsafe {
+                sys::ps_hierarchy_prolong(
+                    raw,
+                    level,
+                    positions.as_ptr().cast::<f64>(),
+                    positions.len() * 3,
+                    out,
+                    capacity,
+                    count,
+                )
+            };
+            self.check(status)
+        })
+    }
+
+    /// The number of parallel vertex-split batches that refine `level` into `level + 1`
+    /// (PSQ §4.4.4).
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] for a level that does not exist or is the finest.
+    pub fn num_expansion_batches(&self, level: usize) -> Result<usize> {
+        let raw = self.handle()?;
+        let level = c_level(level)?;
+        let mut batches = 0;
+        // SAFETY: live handle, valid out-pointer.
+        let status = unsafe { sys::ps_hierarchy_num_expansion_batches(raw, level, &mut batches) };
+        self.check(status)?;
+        Ok(crate::count_from(batches))
     }
 
     /// Takes ownership of a freshly created handle.
@@ -135,7 +207,7 @@ impl Hierarchy {
         check(status, || unsafe { sys::ps_hierarchy_last_error(self.raw.as_ptr()) })
     }
 
-    /// The number of levels (≥ 1; 1 in this library version).
+    /// The number of levels (≥ 1).
     ///
     /// # Panics
     /// Inside a progress closure (the C library forbids calls from callbacks).

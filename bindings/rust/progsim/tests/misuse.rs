@@ -51,12 +51,13 @@ fn bad_meshes_and_files_are_rejected() {
         Status::Io,
         "/nonexistent/mesh.obj",
     );
-    let def = HierarchyDef { coarse_vertex_counts: vec![4] };
+    let def = HierarchyDef { coarse_vertex_counts: vec![9] };
     assert_error(
         Hierarchy::from_mesh_with(&def, &GRID_VERTICES, &GRID_FACES),
-        Status::Unsupported,
-        "coarse levels",
+        Status::InvalidArgument,
+        "below the mesh's 9 vertices",
     );
+    assert_error(Hierarchy::load("/nonexistent/h.bin"), Status::Io, "/nonexistent/h.bin");
 }
 
 #[test]

@@ -1,0 +1,73 @@
+//! Multi-level hierarchies: level sizes, exact rest recovery through `prolong`, save/load and
+//! errors, on the bundled 441-vertex cloth.
+
+mod common;
+
+use common::square_cloth;
+use progsim::{Hierarchy, HierarchyDef, Simulation, SimulationDef, Status};
+
+fn cloth_levels() -> Hierarchy {
+    let def = HierarchyDef { coarse_vertex_counts: vec![30, 110] };
+    Hierarchy::from_file_with(&def, square_cloth()).expect("decimate the bundled cloth")
+}
+
+fn max_distance(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(p, q)| {
+            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn levels_prolong_to_the_fine_rest_shape() {
+    let hierarchy = cloth_levels();
+    assert_eq!(hierarchy.num_levels(), 3);
+    assert_eq!(hierarchy.level_size(0).unwrap().0, 30);
+    assert_eq!(hierarchy.level_size(1).unwrap().0, 110);
+    let fine = hierarchy.rest_positions(2).unwrap();
+    for level in 0..2 {
+        let coarse = hierarchy.rest_positions(level).unwrap();
+        let prolonged = hierarchy.prolong(level, &coarse).unwrap();
+        assert!(max_distance(&prolonged, &fine) < 1e-9, "level {level}");
+        assert!(hierarchy.num_expansion_batches(level).unwrap() >= 1);
+    }
+    // A translation of the coarse shape translates the fine one.
+    let moved: Vec<[f64; 3]> = hierarchy
+        .rest_positions(0)
+        .unwrap()
+        .iter()
+        .map(|p| [p[0] + 1.0, p[1], p[2] - 2.0])
+        .collect();
+    let expected: Vec<[f64; 3]> = fine.iter().map(|p| [p[0] + 1.0, p[1], p[2] - 2.0]).collect();
+    assert!(max_distance(&hierarchy.prolong(0, &moved).unwrap(), &expected) < 1e-9);
+}
+
+#[test]
+fn saved_hierarchy_loads_the_same() {
+    let hierarchy = cloth_levels();
+    let path = std::env::temp_dir().join(format!("progsim_rust_{}.hierarchy", std::process::id()));
+    hierarchy.save(&path).unwrap();
+    let loaded = Hierarchy::load(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    for level in 0..3 {
+        assert_eq!(loaded.faces(level).unwrap(), hierarchy.faces(level).unwrap());
+        assert_eq!(loaded.rest_positions(level).unwrap(), hierarchy.rest_positions(level).unwrap());
+    }
+}
+
+#[test]
+fn bad_requests_are_errors() {
+    let hierarchy = cloth_levels();
+    let error = hierarchy.prolong(0, &[[0.0; 3]; 29]).unwrap_err();
+    assert_eq!(error.code, Status::InvalidArgument);
+    assert!(error.message.contains("needs 90"), "{}", error.message);
+    assert_eq!(hierarchy.prolong(5, &[[0.0; 3]; 30]).unwrap_err().code, Status::OutOfRange);
+    assert_eq!(hierarchy.num_expansion_batches(2).unwrap_err().code, Status::OutOfRange);
+    let def = HierarchyDef { coarse_vertex_counts: vec![50, 50] };
+    let error = Hierarchy::from_file_with(&def, square_cloth()).unwrap_err();
+    assert_eq!(error.code, Status::InvalidArgument);
+    let error = Simulation::new(&hierarchy, &SimulationDef::default()).unwrap_err();
+    assert_eq!(error.code, Status::Unsupported);
+}
