@@ -122,13 +122,14 @@ typedef struct ps_hierarchy ps_hierarchy;
 
 /** How to build a hierarchy. Fill with ps_hierarchy_def_init(), then change fields. */
 typedef struct ps_hierarchy_def {
-  /** Target vertex count of each level below the finest, increasing (coarsest first).
+  /** Target vertex count of each level below the finest (distinct, each at least 4 and
+   *  below the mesh's; any order, level 0 gets the smallest).
    *  Nullable: NULL with num_coarse_levels = 0 (the default) gives one level, the input
    *  mesh itself. Borrowed during the create call only. */
   const int32_t* coarse_vertex_counts;
   /** Number of entries in coarse_vertex_counts. Default 0. */
   int32_t num_coarse_levels;
-  /** Nullable (default): called during decimation (see ps_progress_fn). */
+  /** Nullable (default): called while the hierarchy is built (see ps_progress_fn). */
   ps_progress_fn progress;
   /** Passed back to progress unchanged. Default NULL. */
   void* progress_user_data;
@@ -208,7 +209,8 @@ PS_API int32_t ps_hierarchy_num_expansion_batches(const ps_hierarchy* hierarchy,
 PS_API int32_t ps_hierarchy_save(const ps_hierarchy* hierarchy, const char* path);
 
 /** Loads a hierarchy saved by ps_hierarchy_save(). A missing, truncated or corrupt file
- *  gives PS_ERROR_IO or PS_ERROR_INVALID_ARGUMENT naming the path and the problem.
+ *  gives PS_ERROR_IO, PS_ERROR_INVALID_ARGUMENT or PS_ERROR_INVALID_MESH naming the path
+ *  and the problem.
  *  @param out  receives the new hierarchy; caller owns (ps_hierarchy_destroy()). */
 PS_API int32_t ps_hierarchy_load(const char* path, ps_hierarchy** out);
 

@@ -5,12 +5,14 @@
 #include <memory>
 #include <type_traits>
 
+#include "common/error.hpp"
 #include "handles.hpp"
 #include "hierarchy/hierarchy_io.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "mesh/mesh_io.hpp"
 
 ps_hierarchy::ps_hierarchy(progsim::MeshHierarchy built) : mesh_hierarchy(std::move(built)) {
+  to_finest.reserve(mesh_hierarchy.finest());
   for (int l = 0; l < mesh_hierarchy.finest(); ++l)
     to_finest.push_back(progsim::direct_prolongation(mesh_hierarchy, l));
 }
@@ -118,7 +120,12 @@ PS_API int32_t ps_hierarchy_load(const char* path, ps_hierarchy** out) {
   return guarded(nullptr, "ps_hierarchy_load", [&] {
     require(out, "out");
     require(path, "path");
-    *out = std::make_unique<ps_hierarchy>(load_hierarchy(path)).release();
+    MeshHierarchy loaded = load_hierarchy(path);
+    try {
+      *out = std::make_unique<ps_hierarchy>(std::move(loaded)).release();
+    } catch (const Error& e) {  // a coarse level that passes the checks but not a prolongation
+      fail(e.status(), std::string(path) + ": " + e.what());
+    }
   });
 }
 
@@ -195,11 +202,16 @@ PS_API int32_t ps_hierarchy_prolong(const ps_hierarchy* hierarchy, int32_t level
                                               " doubles; level " + std::to_string(level) +
                                               " needs " + std::to_string(mesh.vertices.size()) +
                                               " (3 per vertex)");
+    const MeshHierarchy& h = hierarchy->mesh_hierarchy;
+    if (!out) {  // size query
+      const auto n = static_cast<size_t>(h.levels.back().rest.vertices.size());
+      copy_out(static_cast<const double*>(nullptr), n, out, capacity, out_count);
+      return;
+    }
     const Positions coarse = Eigen::Map<const Positions>(positions, mesh.num_vertices(), 3);
     if (!coarse.allFinite())
       api_fail(PS_ERROR_INVALID_ARGUMENT, "positions contain NaN or infinite values");
-    const Positions fine =
-        level == hierarchy->mesh_hierarchy.finest() ? coarse : hierarchy->to_finest[level](coarse);
+    const Positions fine = level == h.finest() ? coarse : hierarchy->to_finest[level](coarse);
     copy_out(fine.data(), static_cast<size_t>(fine.size()), out, capacity, out_count);
   });
 }

@@ -39,9 +39,10 @@ bool draw_progress(void* user, double fraction, const char*) {
 int run_hierarchy_command(const HierarchyCommand& options) {
   const TriangleMesh mesh = read_mesh(options.mesh_path);
   HierarchyOptions build;
+  const bool by_ratio = options.ratio != 0.0 || options.count != 0;
   build.coarse_vertex_counts =
-      options.count > 0 ? geometric_level_counts(mesh.num_vertices(), options.ratio, options.count)
-                        : options.levels;
+      by_ratio ? geometric_level_counts(mesh.num_vertices(), options.ratio, options.count)
+               : options.levels;
   if (build.coarse_vertex_counts.empty())
     fail(Status::invalid_argument, "hierarchy: give --levels or --ratio with --count");
   ProgressBar bar("hierarchy", 100);

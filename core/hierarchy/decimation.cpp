@@ -26,8 +26,18 @@ using VertexIndex = SurfaceMesh::Vertex_index;
 using FaceIndex = SurfaceMesh::Face_index;
 namespace SMS = CGAL::Surface_mesh_simplification;
 
+// The filter and visitor rely on CGAL 5.5's call order (filter, OnCollapsing, OnCollapsed for
+// one edge in a row) and boost::optional signatures; CGAL 6 changed the latter.
+static_assert(CGAL_VERSION_NR >= 1050500000 && CGAL_VERSION_NR < 1060000000,
+              "progsim's decimation is written against CGAL 5.5.x");
+
+/// Edges whose endpoints have more incident edges than this in total are not collapsed: it
+/// bounds the per-collapse work of the flattening (quadratic in the patch size) on fans.
+constexpr int kMaxPatchValence = 128;
+
 /// Collapses may not create triangles of quality 4√3·A / Σ ℓ² below this (1 = equilateral),
 /// unless the patch already had worse ones: coarse levels stay usable as simulation meshes.
+/// (A progsim choice, not in PSQ.)
 constexpr double kMinTriangleQuality = 0.05;
 
 Vec3 to_vec3(const Kernel::Point_3& p) {
@@ -44,8 +54,8 @@ SurfaceMesh to_surface_mesh(const TriangleMesh& mesh) {
     const auto face = sm.add_face(VertexIndex(mesh.faces(f, 0)), VertexIndex(mesh.faces(f, 1)),
                                   VertexIndex(mesh.faces(f, 2)));
     if (face == SurfaceMesh::null_face())
-      fail(Status::invalid_mesh, "decimation: face " + std::to_string(f) +
-                                     " cannot be added (non-manifold or inconsistently oriented)");
+      fail(Status::invalid_mesh, "decimation: CGAL's Surface_mesh cannot insert face " +
+                                     std::to_string(f) + " (the mesh is not an oriented manifold)");
   }
   return sm;
 }
@@ -57,7 +67,8 @@ std::array<VertexIndex, 3> face_corners(const SurfaceMesh& sm, FaceIndex f) {
   return corners;
 }
 
-/// Triangle quality 4√3·A / (ℓ₀² + ℓ₁² + ℓ₂²): 1 for equilateral, 0 for degenerate.
+/// Triangle quality 4√3·A / (ℓ₀² + ℓ₁² + ℓ₂²) (Bank and Smith's shape measure): 1 for
+/// equilateral, 0 for degenerate.
 double triangle_quality(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   const double lengths =
       (p1 - p0).squaredNorm() + (p2 - p1).squaredNorm() + (p0 - p2).squaredNorm();
@@ -113,6 +124,9 @@ class Tracker {
   template <class Profile>
   bool prepare(const Profile& profile, const Kernel::Point_3& placement) {
     pending_.reset();
+    if (static_cast<int>(CGAL::degree(profile.v0(), sm_) + CGAL::degree(profile.v1(), sm_)) >
+        kMaxPatchValence)
+      return false;
     PendingCollapse pending;
     pending.v0 = profile.v0();
     pending.v1 = profile.v1();
@@ -146,6 +160,9 @@ class Tracker {
   /// records the collapse, and records a level when a target count is reached.
   template <class Profile>
   void collapsed(const Profile& profile, VertexIndex kept) {
+    // CGAL collapses zero-length edges without the filter (validated meshes have none).
+    if (!pending_ || pending_->v0 != profile.v0() || pending_->v1 != profile.v1())
+      fail(Status::internal, "decimation: collapse of an edge the filter did not see");
     PendingCollapse& p = *pending_;
     const std::vector<FaceIndex> after_faces = match_after_faces(p, kept);
     for (const auto& popped : p.popped) {
@@ -248,7 +265,8 @@ class Tracker {
       std::array<Vec3, 3> p;
       for (int k = 0; k < 3; ++k)
         p[k] = after && face[k] == patch.a ? patch.merged_point : patch.points[face[k]];
-      worst = std::min(worst, triangle_quality(p[0], p[1], p[2]));
+      const double quality = triangle_quality(p[0], p[1], p[2]);
+      if (std::isnan(quality) || quality < worst) worst = quality;  // NaN counts as worst
     }
     return worst;
   }
@@ -367,6 +385,8 @@ class Tracker {
       for (int k = 0; k < 3; ++k) {
         const int input = level.input_vertex[level.rest.faces(anchor.face, k)];
         const auto at = std::find(point.corners.begin(), point.corners.end(), input);
+        if (at == point.corners.end())
+          fail(Status::internal, "decimation: a tracked point lost its face corners");
         anchor.weights[k] = point.weights[at - point.corners.begin()];
       }
     }
@@ -388,8 +408,9 @@ class Tracker {
 
 /// CGAL placement: the quadric-optimal point (Garland and Heckbert 1997), except that a
 /// collapse touching the border puts the merged vertex on a border endpoint (the nearer one
-/// for a border edge), so borders keep their shape and the flattening's border uv stays the
-/// merged vertex's true position.
+/// when both are border vertices), so borders move only where a border corner is cut off and
+/// the flattening's border uv stays the merged vertex's true position. (A progsim choice, not
+/// in PSQ.)
 template <class Base>
 struct BorderKeepingPlacement {
   Base base;

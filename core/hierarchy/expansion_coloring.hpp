@@ -30,9 +30,9 @@ std::vector<std::vector<int>> expansion_batches(const std::vector<FaceCorners>& 
 /// expansion_batches touch disjoint faces; replay a sequence one split per call). Faces are
 /// matched up to cyclic rotation of their corners; on return `faces` holds every face rotated so
 /// that its smallest corner comes first, sorted (such input is not re-sorted, so a replay costs
-/// O(|faces|) per batch). Used by the refinement and by tests to replay a schedule. Throws
-/// Error(invalid_argument) for a record index outside `collapses`, Error(internal) if an `after`
-/// face is missing.
+/// O(|faces|) per batch). For replaying a schedule (the refinement applies batches this way).
+/// Throws Error(invalid_argument) for a record index outside `collapses`, Error(internal) if an
+/// `after` face is missing.
 void apply_splits(std::vector<FaceCorners>& faces, const std::vector<CollapseRecord>& collapses,
                   const std::vector<int>& batch);
 

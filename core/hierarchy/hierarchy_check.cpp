@@ -7,13 +7,14 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "hierarchy/expansion_coloring.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
+#include "mesh/mesh_validation.hpp"
 
 namespace progsim {
 namespace {
 
 /// Barycentric weights may undershoot 0 and miss a sum of 1 by this much (rounding).
-constexpr double kWeightTolerance = 1e-9;
 
 /// Throws invalid_argument with "hierarchy: <what>".
 [[noreturn]] void reject(const std::string& what) {
@@ -97,8 +98,8 @@ void check_level_sizes(const MeshHierarchy& hierarchy) {
 /// What is wrong with barycentric weights, or nullptr if they are valid.
 const char* weights_problem(const Vec3& w) {
   if (!w.allFinite()) return "not all finite";
-  if (w.minCoeff() < -kWeightTolerance) return "one of them negative";
-  if (std::abs(w.sum() - 1.0) > kWeightTolerance) return "not summing to 1";
+  if (w.minCoeff() < -kAnchorWeightTolerance) return "one of them negative";
+  if (std::abs(w.sum() - 1.0) > kAnchorWeightTolerance) return "not summing to 1";
   return nullptr;
 }
 
@@ -233,9 +234,34 @@ void check_batches(const MeshHierarchy& hierarchy) {
   for (int l = 0; l < hierarchy.finest(); ++l) check_level_batches(hierarchy, l);
 }
 
+/// Every level a valid mesh; each level's batches those the records give, refining it into
+/// the next level (PSQ §4.4.4).
+void check_refinement(const MeshHierarchy& h) {
+  for (int l = 0; l < h.num_levels(); ++l)
+    validate_mesh(h.levels[l].rest, "hierarchy level " + std::to_string(l));
+  for (int l = 0; l < h.finest(); ++l) {
+    const std::string level = std::to_string(l);
+    std::vector<FaceCorners> faces = level_input_faces(h.levels[l]);
+    try {
+      if (expansion_batches(faces, h.collapses, h.first_collapse[l + 1], h.first_collapse[l]) !=
+          h.expansion_batches[l])
+        fail(Status::invalid_argument,
+             "hierarchy: the expansion batches of level " + level + " differ from its records'");
+      for (const auto& batch : h.expansion_batches[l]) apply_splits(faces, h.collapses, batch);
+    } catch (const Error& e) {
+      if (e.status() == Status::invalid_argument) throw;
+      fail(Status::invalid_argument,
+           "hierarchy: the collapse records of level " + level + " do not fit it: " + e.what());
+    }
+    if (!same_faces(faces, level_input_faces(h.levels[l + 1])))
+      fail(Status::invalid_argument, "hierarchy: the collapse records of level " + level +
+                                         " do not refine it into level " + std::to_string(l + 1));
+  }
+}
+
 }  // namespace
 
-void check_hierarchy(const MeshHierarchy& hierarchy) {
+void check_hierarchy_structure(const MeshHierarchy& hierarchy) {
   check_level_count(hierarchy);
   check_levels(hierarchy);
   check_level_sizes(hierarchy);
@@ -243,6 +269,11 @@ void check_hierarchy(const MeshHierarchy& hierarchy) {
   check_first_collapse(hierarchy);
   check_records(hierarchy);
   check_batches(hierarchy);
+}
+
+void check_hierarchy(const MeshHierarchy& hierarchy) {
+  check_hierarchy_structure(hierarchy);
+  check_refinement(hierarchy);
 }
 
 }  // namespace progsim

@@ -283,11 +283,18 @@ MeshHierarchy read_hierarchy(Reader& in) {
 }  // namespace
 
 void save_hierarchy(const MeshHierarchy& hierarchy, const std::string& path) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  // Written beside the target and renamed over it: a failed save leaves the old file intact.
+  const std::string partial = path + ".partial";
+  std::ofstream out(partial, std::ios::binary | std::ios::trunc);
   if (!out) fail(Status::io_error, path + ": cannot open the file for writing");
   put_hierarchy(out, hierarchy);
   out.close();
-  if (!out) fail(Status::io_error, path + ": cannot write the file");
+  std::error_code error;
+  if (out) std::filesystem::rename(partial, path, error);
+  if (!out || error) {
+    std::filesystem::remove(partial, error);
+    fail(Status::io_error, path + ": cannot write the file");
+  }
 }
 
 MeshHierarchy load_hierarchy(const std::string& path) {

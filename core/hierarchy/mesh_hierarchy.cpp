@@ -8,16 +8,13 @@
 #include "mesh/mesh_validation.hpp"
 
 namespace progsim {
-namespace {
 
-std::vector<FaceCorners> input_faces(const HierarchyLevel& level) {
+std::vector<FaceCorners> level_input_faces(const HierarchyLevel& level) {
   std::vector<FaceCorners> faces(level.rest.num_faces());
   for (int f = 0; f < level.rest.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) faces[f][k] = level.input_vertex[level.rest.faces(f, k)];
   return faces;
 }
-
-}  // namespace
 
 std::vector<int> geometric_level_counts(int finest_vertices, double ratio, int count) {
   if (!(ratio > 1.0) || !std::isfinite(ratio) || count < 1 || count > 30)
@@ -41,7 +38,7 @@ MeshHierarchy build_hierarchy(const TriangleMesh& mesh, const HierarchyOptions& 
   MeshHierarchy hierarchy = decimate(mesh, options.coarse_vertex_counts, progress, user);
   for (int l = 0; l < hierarchy.finest(); ++l)
     hierarchy.expansion_batches.push_back(
-        expansion_batches(input_faces(hierarchy.levels[l]), hierarchy.collapses,
+        expansion_batches(level_input_faces(hierarchy.levels[l]), hierarchy.collapses,
                           hierarchy.first_collapse[l + 1], hierarchy.first_collapse[l]));
   if (progress && !progress(user, 1.0, "expansion coloring"))
     fail(Status::cancelled, "hierarchy: cancelled by the progress callback");

@@ -34,7 +34,11 @@ struct MeshHierarchy {
   std::vector<HierarchyLevel> levels;
   /// to_next[l] (l < L): each vertex of level l+1 anchored on a face of level l (U^l_{l+1}).
   std::vector<SurfaceAnchors> to_next;
-  /// to_finest[l] (l < L): each vertex of level L anchored on a face of level l (U^l).
+  /// to_finest[l] (l < L): each vertex of level L anchored on a face of level l (U^l). Each
+  /// finest vertex is tracked through every collapse down to one face of level l, so U^l has at
+  /// most 3 entries per row: the composition of the per-level piecewise-linear maps, rather
+  /// than PSQ §4.3.1's matrix product U^{L−1}_L ⋯ U^l_{l+1}, whose rows spread over several
+  /// faces (denser, and equal only where the maps are linear).
   std::vector<SurfaceAnchors> to_finest;
   /// Every collapse, in decimation order (fine to coarse).
   std::vector<CollapseRecord> collapses;
@@ -50,6 +54,9 @@ struct MeshHierarchy {
   int num_levels() const { return static_cast<int>(levels.size()); }
   int finest() const { return num_levels() - 1; }
 };
+
+/// The faces of a level as input-mesh vertex id triples (the ids collapse records use).
+std::vector<FaceCorners> level_input_faces(const HierarchyLevel& level);
 
 /// How to build a hierarchy.
 struct HierarchyOptions {
@@ -74,9 +81,15 @@ using HierarchyProgress = bool (*)(void* user, double fraction, const char* phas
 MeshHierarchy build_hierarchy(const TriangleMesh& mesh, const HierarchyOptions& options,
                               HierarchyProgress progress = nullptr, void* user = nullptr);
 
-/// Checks the invariants a hierarchy read from elsewhere must satisfy (level sizes, anchors in
-/// range with valid weights, record ids in range, batches covering each level's collapses).
+/// Checks the shape of a hierarchy read from elsewhere: level sizes, anchors in range with
+/// valid weights, record ids in range, batches covering each level's collapses exactly once.
 /// Throws Error(invalid_argument) naming the first violation.
+void check_hierarchy_structure(const MeshHierarchy& hierarchy);
+
+/// check_hierarchy_structure(), then that every level is a valid mesh (Error(invalid_mesh)
+/// from validate_mesh), that the batches are exactly those expansion_batches() computes from
+/// the records, and that applying them turns each level into the next (Error(invalid_argument)
+/// otherwise).
 void check_hierarchy(const MeshHierarchy& hierarchy);
 
 }  // namespace progsim

@@ -12,7 +12,6 @@ namespace {
 
 /// Barycentric weights may undershoot 0 and miss a sum of 1 by this much (rounding of the
 /// point location that produced them).
-constexpr double kWeightTolerance = 1e-9;
 
 /// Throws Error(invalid_argument, "prolongation: fine vertex <i>: <problem>").
 [[noreturn]] void reject_anchor(std::size_t i, const std::string& problem) {
@@ -49,9 +48,9 @@ void check_anchor(const SurfaceAnchor& anchor, std::size_t i, Eigen::Index num_f
                          std::to_string(num_faces) + ")");
   const Vec3& w = anchor.weights;
   if (!w.allFinite()) reject_anchor(i, describe_weights(w) + " are not finite");
-  if (w.minCoeff() < -kWeightTolerance)
+  if (w.minCoeff() < -kAnchorWeightTolerance)
     reject_anchor(i, describe_weights(w) + " have a negative entry");
-  if (std::abs(w.sum() - 1.0) > kWeightTolerance)
+  if (std::abs(w.sum() - 1.0) > kAnchorWeightTolerance)
     reject_anchor(i, describe_weights(w) + " do not sum to 1");
 }
 

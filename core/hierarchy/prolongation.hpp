@@ -18,6 +18,10 @@ using ProlongationMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 class Prolongation {
  public:
   virtual ~Prolongation() = default;
+  Prolongation(const Prolongation&) = default;
+  Prolongation(Prolongation&&) noexcept = default;
+  Prolongation& operator=(const Prolongation&) = default;
+  Prolongation& operator=(Prolongation&&) noexcept = default;
 
   /// Vertices of the coarse (input) and fine (output) level.
   int coarse_vertices() const { return static_cast<int>(intrinsic_.cols()); }
@@ -44,7 +48,7 @@ class Prolongation {
   }
 
   /// Uᵀ g: a fine-level per-vertex gradient (n_fine × 3) restricted to the coarse level
-  /// (n_coarse × 3), as in the proxy gradient (U^l)ᵀ ∇Ψ_L (PSQ §4.3.1 with a frozen offset).
+  /// (n_coarse × 3), as in the proxy gradient (U^l)ᵀ ∇Ψ_L (PSQ §4.5, eq. 10, with a frozen offset).
   Positions restrict_gradient(const Positions& fine_gradient) const;
 
  protected:

@@ -14,6 +14,9 @@ struct SurfaceAnchor {
   Vec3 weights = Vec3::Zero();
 };
 
+/// How far anchor weights may be below 0 or their sum off 1 (round-off of the tracking).
+constexpr double kAnchorWeightTolerance = 1e-9;
+
 /// One anchor per vertex of the finer mesh.
 using SurfaceAnchors = std::vector<SurfaceAnchor>;
 

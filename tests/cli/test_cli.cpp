@@ -161,7 +161,8 @@ TEST_F(Cli, HierarchyRejectsBadRequests) {
        {std::pair<std::string, std::string>{"--levels 500", "below the mesh's 441 vertices"},
         {"--levels 50,50", "distinct"},
         {"--ratio 1 --count 2", "must be > 1"},
-        {"--ratio 4 --count 6", "at least 4 needed"}}) {
+        {"--ratio 4 --count 6", "at least 4 needed"},
+        {"--ratio 4 --count 0", "level count 0"}}) {
     const CommandResult r = run_cli("hierarchy " + mesh + " " + args + " --out " + out.string());
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     EXPECT_NE(r.output.find(needle), std::string::npos) << args << ": " << r.output;

@@ -88,6 +88,14 @@ MeshHierarchy square_hierarchy() {
   return h;
 }
 
+/// A decimated 7 × 7 grid: levels of 12, 25 and 49 vertices (real records and batches, which
+/// load_hierarchy replays).
+MeshHierarchy built_hierarchy() {
+  HierarchyOptions options;
+  options.coarse_vertex_counts = {12, 25};
+  return build_hierarchy(make_grid(1.0, 1.0, 6, 6), options);
+}
+
 /// The user's mesh alone.
 MeshHierarchy single_level_hierarchy() {
   MeshHierarchy h;
@@ -133,12 +141,12 @@ void expect_same_hierarchy(const MeshHierarchy& a, const MeshHierarchy& b) {
   EXPECT_EQ(a.expansion_batches, b.expansion_batches);
 }
 
-/// Expects check_hierarchy to reject square_hierarchy() after `change`.
+/// Expects check_hierarchy_structure to reject square_hierarchy() after `change`.
 void expect_rejected(const std::function<void(MeshHierarchy&)>& change,
                      std::initializer_list<std::string> parts) {
   MeshHierarchy h = square_hierarchy();
   change(h);
-  expect_error([&] { check_hierarchy(h); }, Status::invalid_argument, parts);
+  expect_error([&] { check_hierarchy_structure(h); }, Status::invalid_argument, parts);
 }
 
 class HierarchyIo : public ::testing::Test {
@@ -154,7 +162,8 @@ class HierarchyIo : public ::testing::Test {
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
-  /// The bytes of a saved square_hierarchy().
+  /// The bytes of a saved square_hierarchy() (a well-formed file, small enough to corrupt
+  /// at every byte).
   std::string saved_bytes() const {
     save_hierarchy(square_hierarchy(), path("valid.pshier"));
     std::ifstream in(path("valid.pshier"), std::ios::binary);
@@ -181,8 +190,8 @@ std::string with_int64(std::string bytes, std::size_t offset, std::int64_t value
 }  // namespace
 
 TEST(CheckHierarchy, AcceptsTheHandMadeHierarchies) {
-  EXPECT_NO_THROW(check_hierarchy(square_hierarchy()));
-  EXPECT_NO_THROW(check_hierarchy(single_level_hierarchy()));
+  EXPECT_NO_THROW(check_hierarchy_structure(square_hierarchy()));
+  EXPECT_NO_THROW(check_hierarchy_structure(single_level_hierarchy()));
 }
 
 TEST(CheckHierarchy, RejectsBadLevels) {
@@ -231,7 +240,7 @@ TEST(CheckHierarchy, RejectsBadWeights) {
 TEST(CheckHierarchy, AcceptsWeightsWithinRounding) {
   MeshHierarchy h = square_hierarchy();
   h.to_next[0][4].weights = Vec3(0.5 + 5e-10, -5e-10, 0.5);
-  EXPECT_NO_THROW(check_hierarchy(h));
+  EXPECT_NO_THROW(check_hierarchy_structure(h));
 }
 
 TEST(CheckHierarchy, RejectsWrongFirstCollapse) {
@@ -288,7 +297,7 @@ TEST(CheckHierarchy, RejectsBatchEntriesOutsideTheLevel) {
 }
 
 TEST_F(HierarchyIo, RoundTripsEveryFieldExactly) {
-  for (const MeshHierarchy& h : {square_hierarchy(), single_level_hierarchy()}) {
+  for (const MeshHierarchy& h : {built_hierarchy(), single_level_hierarchy()}) {
     SCOPED_TRACE(std::to_string(h.num_levels()) + " levels");
     save_hierarchy(h, path("h.pshier"));
     expect_same_hierarchy(load_hierarchy(path("h.pshier")), h);
@@ -297,11 +306,16 @@ TEST_F(HierarchyIo, RoundTripsEveryFieldExactly) {
 
 TEST_F(HierarchyIo, SaveReportsUnwritablePaths) {
   const std::string missing_dir = path("no_such_dir/h.pshier");
-  expect_error([&] { save_hierarchy(square_hierarchy(), missing_dir); }, Status::io_error,
+  expect_error([&] { save_hierarchy(built_hierarchy(), missing_dir); }, Status::io_error,
                {missing_dir, "cannot open"});
-  if (fs::exists("/dev/full"))  // opens, but every write fails (disk full)
-    expect_error([&] { save_hierarchy(square_hierarchy(), "/dev/full"); }, Status::io_error,
-                 {"/dev/full", "cannot write"});
+  // The file is written beside the target, then renamed over it: a directory in the way makes
+  // the rename fail, and nothing is left behind.
+  const std::string directory = path("occupied");
+  fs::create_directories(directory);
+  expect_error([&] { save_hierarchy(built_hierarchy(), directory); }, Status::io_error,
+               {directory, "cannot write"});
+  EXPECT_FALSE(fs::exists(directory + ".partial"));
+  EXPECT_TRUE(fs::is_directory(directory));
 }
 
 TEST_F(HierarchyIo, RejectsMissingEmptyAndForeignFiles) {
@@ -380,8 +394,8 @@ TEST_F(HierarchyIo, SurvivesAHugeValueAtEveryOffset) {
 }
 
 TEST_F(HierarchyIo, NamesThePathForInconsistentContents) {
-  MeshHierarchy h = square_hierarchy();
-  h.to_next[0][3].face = 7;
+  MeshHierarchy h = built_hierarchy();
+  h.to_next[0][3].face = 1000;
   save_hierarchy(h, path("bad.pshier"));
   try {
     load_hierarchy(path("bad.pshier"));
@@ -392,4 +406,21 @@ TEST_F(HierarchyIo, NamesThePathForInconsistentContents) {
         std::string(e.what()).rfind(path("bad.pshier") + ": hierarchy: to_next[0] anchor 3", 0), 0u)
         << e.what();
   }
+}
+
+// Files whose shape is right but whose batches or records do not refine the levels are
+// rejected: batches out of order, and a coarse face turned over.
+TEST_F(HierarchyIo, RejectsBatchesAndRecordsThatDoNotRefineTheLevels) {
+  MeshHierarchy h = built_hierarchy();
+  ASSERT_GE(h.expansion_batches[0].size(), 2u);
+  std::swap(h.expansion_batches[0].front(), h.expansion_batches[0].back());
+  save_hierarchy(h, path("reordered.pshier"));
+  expect_error([&] { load_hierarchy(path("reordered.pshier")); }, Status::invalid_argument,
+               {"reordered.pshier", "expansion batches of level 0 differ"});
+  h = built_hierarchy();
+  std::swap(h.collapses[h.first_collapse[1]].after[0][0],
+            h.collapses[h.first_collapse[1]].after[0][1]);
+  save_hierarchy(h, path("turned.pshier"));
+  expect_error([&] { load_hierarchy(path("turned.pshier")); }, Status::invalid_argument,
+               {"turned.pshier"});
 }

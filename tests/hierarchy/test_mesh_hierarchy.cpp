@@ -124,13 +124,6 @@ double max_dihedral_angle(const Positions& x, const Faces& faces) {
   return worst;
 }
 
-std::vector<FaceCorners> input_faces(const HierarchyLevel& level) {
-  std::vector<FaceCorners> faces(level.rest.num_faces());
-  for (int f = 0; f < level.rest.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) faces[f][k] = level.input_vertex[level.rest.faces(f, k)];
-  return faces;
-}
-
 /// Faces as a sorted list of rotation-normalised triples (smallest id first, order kept).
 std::vector<FaceCorners> canonical(std::vector<FaceCorners> faces) {
   for (auto& f : faces) std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
@@ -234,7 +227,7 @@ TEST_P(EveryMesh, ExpansionBatchesAreIndependentAndReplayToTheFinerLevel) {
   const MeshHierarchy& h = hierarchy();
   for (int l = 0; l < h.finest(); ++l) {
     std::vector<int> seen(h.collapses.size(), 0);
-    std::vector<FaceCorners> faces = input_faces(h.levels[l]);
+    std::vector<FaceCorners> faces = level_input_faces(h.levels[l]);
     for (const auto& batch : h.expansion_batches[l]) {
       // Closed one-rings of the kept vertices in the current mesh, with the split's own faces:
       // pairwise disjoint within a batch (PSQ Algorithm 7).
@@ -255,7 +248,7 @@ TEST_P(EveryMesh, ExpansionBatchesAreIndependentAndReplayToTheFinerLevel) {
       apply_splits(faces, h.collapses, batch);
     }
     for (int r = h.first_collapse[l + 1]; r < h.first_collapse[l]; ++r) EXPECT_EQ(seen[r], 1);
-    EXPECT_EQ(canonical(faces), canonical(input_faces(h.levels[l + 1])))
+    EXPECT_EQ(canonical(faces), canonical(level_input_faces(h.levels[l + 1])))
         << name() << " level " << l;
     const int splits = h.first_collapse[l] - h.first_collapse[l + 1];
     // Batches run several splits each (a wave per batch, not one split at a time).
