@@ -112,8 +112,14 @@ struct PendingCollapse {
 /// through every collapse; each time a target count is reached, a level is recorded.
 class Tracker {
  public:
-  Tracker(SurfaceMesh& sm, std::vector<int> targets, HierarchyProgress progress, void* user)
-      : sm_(sm), targets_(std::move(targets)), progress_(progress), user_(user) {
+  Tracker(SurfaceMesh& sm, std::vector<int> targets, std::vector<int> groups,
+          HierarchyProgress progress, void* user)
+      : sm_(sm),
+        targets_(std::move(targets)),
+        group_(std::move(groups)),
+        progress_(progress),
+        user_(user) {
+    result_.input_group = group_;
     face_points_ = sm_.add_property_map<FaceIndex, std::vector<int>>("f:progsim_points").first;
     finest_vertices_ = static_cast<int>(sm_.number_of_vertices());
     last_level_points_ = add_vertex_points();
@@ -174,6 +180,7 @@ class Tracker {
       face_points_[point.face].push_back(popped.point);
     }
     const VertexIndex removed = kept == profile.v0() ? profile.v1() : profile.v0();
+    group_[kept.idx()] = std::max(group_[kept.idx()], group_[removed.idx()]);
     record_collapse(p, removed, kept);
     pending_.reset();
     report_progress();
@@ -181,6 +188,9 @@ class Tracker {
            static_cast<int>(sm_.number_of_vertices()) <= targets_[next_target_])
       record_level();
   }
+
+  /// Per input vertex, its current group (−1 free).
+  const std::vector<int>& groups() const { return group_; }
 
   /// The hierarchy, once decimation has ended: levels coarsest first, then the input mesh.
   MeshHierarchy finish(const TriangleMesh& input) {
@@ -395,6 +405,7 @@ class Tracker {
 
   SurfaceMesh& sm_;
   std::vector<int> targets_;  ///< descending
+  std::vector<int> group_;    ///< per input vertex: its group now (moves to kept vertices)
   std::size_t next_target_ = 0;
   HierarchyProgress progress_;
   void* user_;
@@ -406,23 +417,32 @@ class Tracker {
   MeshHierarchy result_;
 };
 
-/// CGAL placement: the quadric-optimal point (Garland and Heckbert 1997), except that a
-/// collapse touching the border puts the merged vertex on a border endpoint (the nearer one
-/// when both are border vertices), so borders move only where a border corner is cut off and
-/// the flattening's border uv stays the merged vertex's true position. (A progsim choice, not
-/// in PSQ.)
+/// CGAL placement: the quadric-optimal point (Garland and Heckbert 1997), except where an
+/// endpoint must stay: on an edge touching the border, the border endpoint (so borders move
+/// only where a border corner is cut off, and the flattening's border uv stays the merged
+/// vertex's true position); on an edge touching a vertex group (a handle), the grouped
+/// endpoint, at its rest position. Both endpoints border, or both in one group: the nearer to
+/// the optimum. Two groups, or the two rules wanting different endpoints: no collapse.
+/// (Progsim choices, not in PSQ.)
 template <class Base>
-struct BorderKeepingPlacement {
+struct KeptVertexPlacement {
   Base base;
+  const Tracker* tracker;
   template <class Profile>
   boost::optional<typename Profile::Point> operator()(const Profile& profile) const {
     const auto optimal = base(profile);
     if (!optimal) return optimal;
+    const int g0 = tracker->groups()[profile.v0().idx()];
+    const int g1 = tracker->groups()[profile.v1().idx()];
+    if (g0 >= 0 && g1 >= 0 && g0 != g1) return boost::none;
     const auto& sm = profile.surface_mesh();
     const bool border0 = bool(CGAL::is_border(profile.v0(), sm));
     const bool border1 = bool(CGAL::is_border(profile.v1(), sm));
-    if (!border0 && !border1) return optimal;
-    if (border0 != border1) return border0 ? profile.p0() : profile.p1();
+    const bool keep0 = (border0 && !border1) || (g0 >= 0 && g1 < 0);
+    const bool keep1 = (border1 && !border0) || (g1 >= 0 && g0 < 0);
+    if (keep0 && keep1) return boost::none;
+    if (keep0 || keep1) return keep0 ? profile.p0() : profile.p1();
+    if (!border0 && g0 < 0) return optimal;
     const Vec3 p = to_vec3(*optimal);
     return (p - to_vec3(profile.p0())).squaredNorm() <= (p - to_vec3(profile.p1())).squaredNorm()
                ? profile.p0()
@@ -466,27 +486,42 @@ std::vector<int> checked_targets(std::vector<int> counts, int n) {
   return counts;
 }
 
+/// The groups of the input vertices: all free if none given.
+std::vector<int> checked_groups(std::vector<int> groups, int n) {
+  if (groups.empty()) return std::vector<int>(n, -1);
+  if (static_cast<int>(groups.size()) != n)
+    fail(Status::invalid_argument, "hierarchy: " + std::to_string(groups.size()) +
+                                       " vertex groups for " + std::to_string(n) + " vertices");
+  for (int v = 0; v < n; ++v)
+    if (groups[v] < -1)
+      fail(Status::invalid_argument, "hierarchy: vertex " + std::to_string(v) + " has group " +
+                                         std::to_string(groups[v]) + " (groups are -1 or more)");
+  return groups;
+}
+
 }  // namespace
 
 MeshHierarchy decimate(const TriangleMesh& mesh, std::vector<int> coarse_vertex_counts,
-                       HierarchyProgress progress, void* user) {
+                       std::vector<int> vertex_groups, HierarchyProgress progress, void* user) {
   const std::vector<int> targets =
       checked_targets(std::move(coarse_vertex_counts), mesh.num_vertices());
+  const std::vector<int> groups = checked_groups(std::move(vertex_groups), mesh.num_vertices());
   if (targets.empty()) {
     MeshHierarchy single;
     single.levels.push_back(input_level(mesh));
+    single.input_group = groups;
     single.first_collapse.push_back(0);
     return single;
   }
   SurfaceMesh sm = to_surface_mesh(mesh);
-  Tracker tracker(sm, targets, progress, user);
+  Tracker tracker(sm, targets, groups, progress, user);
   const int coarsest = targets.back();
   auto stop = [coarsest](const auto&, const auto& profile, std::size_t, std::size_t) {
     return static_cast<int>(profile.surface_mesh().number_of_vertices()) <= coarsest;
   };
   SMS::GarlandHeckbert_probabilistic_plane_policies<SurfaceMesh, Kernel> quadrics(sm);
-  const BorderKeepingPlacement<decltype(quadrics.get_placement())> placement{
-      quadrics.get_placement()};
+  const KeptVertexPlacement<decltype(quadrics.get_placement())> placement{quadrics.get_placement(),
+                                                                          &tracker};
   TrackingVisitor visitor;
   visitor.tracker = &tracker;
   const FlatteningFilter filter{&tracker};

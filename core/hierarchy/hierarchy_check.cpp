@@ -261,6 +261,19 @@ void check_refinement(const MeshHierarchy& h) {
 
 }  // namespace
 
+/// input_group: one entry per input vertex, each -1 (free) or a group id.
+void check_groups(const MeshHierarchy& hierarchy) {
+  const std::vector<int>& group = hierarchy.input_group;
+  const auto n = hierarchy.levels.back().rest.num_vertices();
+  if (static_cast<std::int64_t>(group.size()) != n)
+    reject("input_group has " + std::to_string(group.size()) + " entries for " + std::to_string(n) +
+           " input vertices");
+  for (std::size_t v = 0; v < group.size(); ++v)
+    if (group[v] < -1)
+      reject("input_group[" + std::to_string(v) + "] = " + std::to_string(group[v]) +
+             " (groups are -1 or more)");
+}
+
 void check_hierarchy_structure(const MeshHierarchy& hierarchy) {
   check_level_count(hierarchy);
   check_levels(hierarchy);
@@ -269,6 +282,7 @@ void check_hierarchy_structure(const MeshHierarchy& hierarchy) {
   check_first_collapse(hierarchy);
   check_records(hierarchy);
   check_batches(hierarchy);
+  check_groups(hierarchy);
 }
 
 void check_hierarchy(const MeshHierarchy& hierarchy) {

@@ -23,7 +23,7 @@ static_assert(sizeof(int) == 4 && std::numeric_limits<double>::is_iec559,
 static_assert(sizeof(FaceCorners) == 3 * sizeof(int), "FaceCorners must be three packed ids");
 
 constexpr char kMagic[6] = {'P', 'S', 'H', 'I', 'E', 'R'};
-constexpr std::int32_t kVersion = 1;
+constexpr std::int32_t kVersion = 2;
 /// Reads back as 0x01020304 only in the byte order it was written in.
 constexpr std::int32_t kByteOrderMarker = 0x01020304;
 
@@ -119,6 +119,7 @@ void put_hierarchy(std::ostream& out, const MeshHierarchy& hierarchy) {
   for (const CollapseRecord& record : hierarchy.collapses) put_record(out, record);
   put_vector(out, hierarchy.first_collapse);
   put_batches(out, hierarchy.expansion_batches);
+  put_vector(out, hierarchy.input_group);
 }
 
 // ---- Reading ----
@@ -276,6 +277,7 @@ MeshHierarchy read_hierarchy(Reader& in) {
   hierarchy.collapses = read_records(in);
   hierarchy.first_collapse = read_vector<int>(in, "first_collapse entries");
   hierarchy.expansion_batches = read_batches(in);
+  hierarchy.input_group = read_vector<int>(in, "input_group entries");
   in.expect_end();
   return hierarchy;
 }

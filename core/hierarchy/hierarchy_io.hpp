@@ -2,14 +2,15 @@
 /// @file Saving and loading a MeshHierarchy in progsim's binary hierarchy format, so that a
 /// hierarchy built once can be reused across runs.
 ///
-/// Format (version 1), little-endian, every count a std::int64_t, ids int32, reals double:
+/// Format (version 2), little-endian, every count a std::int64_t, ids int32, reals double:
 /// the magic "PSHIER", the int32 version, the int32 byte-order marker 0x01020304; then the
 /// levels (count; per level: vertex count and |V|·3 coordinates row by row, face count and
 /// |F|·3 corners, input_vertex count and ids); to_next and to_finest (list count; per list:
 /// anchor count, the anchors' faces, then their weights, 3 per anchor); the collapse records
 /// (count; per record: removed, kept, then `before` and `after` as face count and 3 ids per
 /// face); first_collapse (count and values); expansion_batches (level count; per level: batch
-/// count; per batch: count and collapse indices). Nothing follows.
+/// count; per batch: count and collapse indices); input_group (count and values). Nothing
+/// follows.
 #include <string>
 
 #include "hierarchy/mesh_hierarchy.hpp"

@@ -1,5 +1,6 @@
 #include "hierarchy/mesh_hierarchy.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.hpp"
@@ -14,6 +15,17 @@ std::vector<FaceCorners> level_input_faces(const HierarchyLevel& level) {
   for (int f = 0; f < level.rest.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) faces[f][k] = level.input_vertex[level.rest.faces(f, k)];
   return faces;
+}
+
+std::vector<int> level_groups(const MeshHierarchy& hierarchy, int level) {
+  std::vector<int> group = hierarchy.input_group;
+  for (int c = 0; c < hierarchy.first_collapse[level]; ++c) {
+    const CollapseRecord& record = hierarchy.collapses[c];
+    group[record.kept] = std::max(group[record.kept], group[record.removed]);
+  }
+  std::vector<int> out;
+  for (int v : hierarchy.levels[level].input_vertex) out.push_back(group[v]);
+  return out;
 }
 
 std::vector<int> geometric_level_counts(int finest_vertices, double ratio, int count) {
@@ -35,7 +47,8 @@ std::vector<int> geometric_level_counts(int finest_vertices, double ratio, int c
 MeshHierarchy build_hierarchy(const TriangleMesh& mesh, const HierarchyOptions& options,
                               HierarchyProgress progress, void* user) {
   validate_mesh(mesh, "hierarchy mesh");
-  MeshHierarchy hierarchy = decimate(mesh, options.coarse_vertex_counts, progress, user);
+  MeshHierarchy hierarchy =
+      decimate(mesh, options.coarse_vertex_counts, options.vertex_groups, progress, user);
   for (int l = 0; l < hierarchy.finest(); ++l)
     hierarchy.expansion_batches.push_back(
         expansion_batches(level_input_faces(hierarchy.levels[l]), hierarchy.collapses,

@@ -40,6 +40,10 @@ struct MeshHierarchy {
   /// than PSQ §4.3.1's matrix product U^{L−1}_L ⋯ U^l_{l+1}, whose rows spread over several
   /// faces (denser, and equal only where the maps are linear).
   std::vector<SurfaceAnchors> to_finest;
+  /// Per input vertex: its group (a handle: vertices held or moved together), −1 if free.
+  /// Groups survive decimation: a collapse never merges two groups and passes the group of
+  /// its removed vertex to the kept one (level_groups()).
+  std::vector<int> input_group;
   /// Every collapse, in decimation order (fine to coarse).
   std::vector<CollapseRecord> collapses;
   /// first_collapse[l]: index in `collapses` of the first collapse that leaves level l
@@ -55,6 +59,10 @@ struct MeshHierarchy {
   int finest() const { return num_levels() - 1; }
 };
 
+/// Per vertex of level `level`, its group (−1 free): input_group carried through the collapses
+/// that lead to the level.
+std::vector<int> level_groups(const MeshHierarchy& hierarchy, int level);
+
 /// The faces of a level as input-mesh vertex id triples (the ids collapse records use).
 std::vector<FaceCorners> level_input_faces(const HierarchyLevel& level);
 
@@ -63,6 +71,10 @@ struct HierarchyOptions {
   /// Vertex counts of the levels below the user's mesh, any order, each distinct and below
   /// its vertex count. Empty: a single-level hierarchy.
   std::vector<int> coarse_vertex_counts;
+  /// Empty, or per input vertex its group (−1 free, else ≥ 0; e.g. the handle it belongs to).
+  /// Vertices of a group keep their rest positions on every level where they survive, every
+  /// group keeps at least one vertex, and no collapse joins two groups.
+  std::vector<int> vertex_groups;
 };
 
 /// Level sizes shrinking by a constant factor: round(n / ratio^k) for k = count … 1, coarsest

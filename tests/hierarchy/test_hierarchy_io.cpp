@@ -85,6 +85,7 @@ MeshHierarchy square_hierarchy() {
   h.collapses = square_collapses();
   h.first_collapse = {5, 0};
   h.expansion_batches = {{{0, 1, 2}, {3, 4}}};
+  h.input_group = {0, -1, -1, -1, 1, -1, -1, -1, -1};
   return h;
 }
 
@@ -93,6 +94,8 @@ MeshHierarchy square_hierarchy() {
 MeshHierarchy built_hierarchy() {
   HierarchyOptions options;
   options.coarse_vertex_counts = {12, 25};
+  options.vertex_groups.assign(49, -1);
+  for (int i = 0; i < 7; ++i) options.vertex_groups[i] = 0;  // the bottom row, one handle
   return build_hierarchy(make_grid(1.0, 1.0, 6, 6), options);
 }
 
@@ -101,6 +104,7 @@ MeshHierarchy single_level_hierarchy() {
   MeshHierarchy h;
   h.levels = {square_levels()[1]};
   h.first_collapse = {0};
+  h.input_group.assign(9, -1);
   return h;
 }
 
@@ -139,6 +143,7 @@ void expect_same_hierarchy(const MeshHierarchy& a, const MeshHierarchy& b) {
   }
   EXPECT_EQ(a.first_collapse, b.first_collapse);
   EXPECT_EQ(a.expansion_batches, b.expansion_batches);
+  EXPECT_EQ(a.input_group, b.input_group);
 }
 
 /// Expects check_hierarchy_structure to reject square_hierarchy() after `change`.
@@ -276,6 +281,12 @@ TEST(CheckHierarchy, RejectsRecordIdsOutOfRange) {
                   {"collapse 3 before[0] corner 0 is vertex -2"});
 }
 
+TEST(CheckHierarchy, RejectsMalformedGroups) {
+  expect_rejected([](MeshHierarchy& h) { h.input_group.pop_back(); },
+                  {"input_group has 8 entries for 9 input vertices"});
+  expect_rejected([](MeshHierarchy& h) { h.input_group[4] = -2; }, {"input_group[4] = -2"});
+}
+
 TEST(CheckHierarchy, RejectsBatchMissingARecord) {
   expect_rejected([](MeshHierarchy& h) { h.expansion_batches[0][1] = {3}; },
                   {"expansion_batches[0] misses collapse 4"});
@@ -332,9 +343,12 @@ TEST_F(HierarchyIo, RejectsMissingEmptyAndForeignFiles) {
 
 TEST_F(HierarchyIo, RejectsOtherVersionsAndByteOrders) {
   std::string bytes = saved_bytes();
-  bytes[kVersionOffset] = 2;
+  bytes[kVersionOffset] = 3;
   const std::string future = write("future.pshier", bytes);
-  expect_error([&] { load_hierarchy(future); }, Status::io_error, {future, "version 2"});
+  expect_error([&] { load_hierarchy(future); }, Status::io_error, {future, "version 3"});
+  bytes[kVersionOffset] = 1;  // before vertex groups were stored
+  const std::string old = write("old.pshier", bytes);
+  expect_error([&] { load_hierarchy(old); }, Status::io_error, {old, "version 1"});
   bytes = saved_bytes();
   std::swap(bytes[10], bytes[13]);  // the marker 0x01020304 read in the other byte order
   std::swap(bytes[11], bytes[12]);

@@ -324,6 +324,51 @@ TEST(HierarchySmoothness, BentCoarseLevelsProlongWithoutSpikes) {
   }
 }
 
+// Vertex groups (handles) survive decimation: the bottom and top rows of a sheet and one
+// interior vertex, on every level, stay where the input had them, never merge, and the
+// shell prolongation still recovers the rest shape.
+TEST(HierarchyGroups, HandlesKeepTheirPlaceOnEveryLevel) {
+  const TriangleMesh sheet = make_grid(1.0, 1.0, 30, 30);
+  HierarchyOptions options;
+  options.coarse_vertex_counts = {60, 240};
+  options.vertex_groups.assign(sheet.num_vertices(), -1);
+  for (int i = 0; i <= 30; ++i) {
+    options.vertex_groups[i] = 0;            // y = 0
+    options.vertex_groups[30 * 31 + i] = 1;  // y = 1
+  }
+  const int centre = 15 * 31 + 15;
+  options.vertex_groups[centre] = 2;
+  const MeshHierarchy h = build_hierarchy(sheet, options);
+  EXPECT_EQ(h.input_group, options.vertex_groups);
+  for (int l = 0; l < h.num_levels(); ++l) {
+    const std::vector<int> group = level_groups(h, l);
+    const Positions& x = h.levels[l].rest.vertices;
+    std::array<int, 3> count{0, 0, 0};
+    for (int v = 0; v < x.rows(); ++v) {
+      if (group[v] < 0) continue;
+      ++count[group[v]];
+      // A grouped vertex sits exactly where one input vertex of its group was.
+      bool found = false;
+      for (int i = 0; i < sheet.num_vertices() && !found; ++i)
+        found = options.vertex_groups[i] == group[v] && sheet.vertices.row(i) == x.row(v);
+      EXPECT_TRUE(found) << "level " << l << " vertex " << v << " of group " << group[v];
+    }
+    EXPECT_GE(count[0], 2) << "level " << l;  // the row's two ends at least
+    EXPECT_GE(count[1], 2) << "level " << l;
+    EXPECT_EQ(count[2], 1) << "level " << l;
+    if (l < h.finest())
+      EXPECT_LT(max_row_distance(direct_prolongation(h, l)(x), sheet.vertices),
+                1e-9 * bounding_box_diagonal(sheet.vertices));
+  }
+  HierarchyOptions bad = options;
+  bad.vertex_groups.pop_back();
+  expect_error([&] { build_hierarchy(sheet, bad); }, Status::invalid_argument,
+               {"960 vertex groups for 961 vertices"});
+  bad = options;
+  bad.vertex_groups[3] = -4;
+  expect_error([&] { build_hierarchy(sheet, bad); }, Status::invalid_argument, {"vertex 3"});
+}
+
 TEST(HierarchyProgress, ReportsIncreasingFractionsAndCanCancel) {
   const TriangleMesh sheet = make_grid(1.0, 1.0, 20, 20);
   HierarchyOptions options;
