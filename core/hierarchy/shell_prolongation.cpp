@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <string>
+#include <unsupported/Eigen/AutoDiff>
 
 #include "common/error.hpp"
 #include "common/parallel.hpp"
@@ -25,24 +26,73 @@ namespace {
 /// factor normalized, so Q is orthonormal to rounding for any face of nonzero area. n and the
 /// degeneracy test use the exact edge differences: a corner moved onto another gives exactly zero
 /// area (F would carry rounding).
-bool face_frame(const Vec3& d1, const Vec3& d2, const Mat2& rest_inverse, Mat3& q) {
-  const Vec3 cross = d1.cross(d2);
-  const double twice_area = cross.norm();
-  if (!(twice_area > 0.0) || !std::isfinite(twice_area)) return false;
-  const double length = d1.norm();
-  const Vec3 b1 = d1 / length;
+/// The value of a scalar (itself for double; the value part of an autodiff scalar).
+inline double value_of(double x) {
+  return x;
+}
+template <class Derivatives>
+double value_of(const Eigen::AutoDiffScalar<Derivatives>& x) {
+  return x.value();
+}
+
+template <class Scalar>
+bool face_frame(const Eigen::Matrix<Scalar, 3, 1>& d1, const Eigen::Matrix<Scalar, 3, 1>& d2,
+                const Mat2& rest_inverse, Eigen::Matrix<Scalar, 3, 3>& q) {
+  using V3 = Eigen::Matrix<Scalar, 3, 1>;
+  using M2 = Eigen::Matrix<Scalar, 2, 2>;
+  const V3 cross = d1.cross(d2);
+  const Scalar twice_area = cross.norm();
+  if (!(value_of(twice_area) > 0.0) || !std::isfinite(value_of(twice_area))) return false;
+  const Scalar length = d1.norm();
+  const V3 b1 = d1 / length;
   // n made orthogonal to b₁: on slivers the cross product of nearly parallel edges is off by
   // ~ε / sin∠(d₁, d₂) in direction, which would otherwise leave Q non-orthonormal by as much.
-  const Vec3 normal = cross - cross.dot(b1) * b1;
+  const V3 normal = cross - cross.dot(b1) * b1;
   q.col(2) = normal / normal.norm();
-  const Vec3 b2 = q.col(2).cross(b1);
-  Mat2 in_plane;  // BᵀD
-  in_plane << length, b1.dot(d2), 0.0, twice_area / length;
-  const Mat2 g = in_plane * rest_inverse;
-  const Vec2 angle = Vec2(g(0, 0) + g(1, 1), g(1, 0) - g(0, 1)).normalized();
+  const V3 b2 = q.col(2).cross(b1);
+  M2 in_plane;  // BᵀD
+  in_plane << length, b1.dot(d2), Scalar(0.0), twice_area / length;
+  const M2 g = in_plane * rest_inverse.cast<Scalar>();
+  const Eigen::Matrix<Scalar, 2, 1> unnormalized(g(0, 0) + g(1, 1), g(1, 0) - g(0, 1));
+  const Eigen::Matrix<Scalar, 2, 1> angle = unnormalized / unnormalized.norm();
   q.col(0) = angle(0) * b1 + angle(1) * b2;
   q.col(1) = angle(0) * b2 - angle(1) * b1;
-  return q.allFinite();
+  for (int k = 0; k < 9; ++k)
+    if (!std::isfinite(value_of(q(k)))) return false;
+  return true;
+}
+
+/// ∂⟨Q(d₁, d₂), M⟩/∂(d₁, d₂) (6) for the frame Q of face_frame and a 3 × 3 weight M (forward
+/// mode over the 6 edge coordinates); zero where the frame is undefined.
+Eigen::Matrix<double, 6, 1> frame_gradient(const Vec3& d1, const Vec3& d2, const Mat2& rest_inverse,
+                                           const Mat3& weight) {
+  using Dual = Eigen::AutoDiffScalar<Eigen::Matrix<double, 6, 1>>;
+  Eigen::Matrix<Dual, 3, 1> e1, e2;
+  for (int k = 0; k < 3; ++k) {
+    e1(k) = Dual(d1(k), 6, k);
+    e2(k) = Dual(d2(k), 6, 3 + k);
+  }
+  Eigen::Matrix<Dual, 3, 3> q;
+  if (!face_frame(e1, e2, rest_inverse, q)) return Eigen::Matrix<double, 6, 1>::Zero();
+  Dual sum(0.0, Eigen::Matrix<double, 6, 1>::Zero());
+  for (int k = 0; k < 9; ++k) sum += q(k) * weight(k);
+  return sum.derivatives();
+}
+
+/// Start offsets (buckets + 1) of the items grouped by bucket, for bucket_items.
+std::vector<int> bucket_starts(const std::vector<int>& bucket_of, int buckets) {
+  std::vector<int> first(buckets + 1, 0);
+  for (int b : bucket_of) ++first[b + 1];
+  for (int b = 0; b < buckets; ++b) first[b + 1] += first[b];
+  return first;
+}
+
+/// The item indices grouped by bucket (increasing within a bucket).
+std::vector<int> bucket_items(const std::vector<int>& bucket_of, const std::vector<int>& first) {
+  std::vector<int> items(bucket_of.size()), next(first.begin(), first.end() - 1);
+  for (std::size_t i = 0; i < bucket_of.size(); ++i)
+    items[next[bucket_of[i]]++] = static_cast<int>(i);
+  return items;
 }
 
 }  // namespace
@@ -77,18 +127,66 @@ ShellProlongation::ShellProlongation(const Positions& coarse_rest, const Faces& 
     const Vec3 rest_offset = fine_rest.row(i).transpose() - intrinsic_point(coarse_rest, i);
     local_offset_[i] = rest_frame.transpose() * rest_offset;
   }
+  build_gather_lists(static_cast<int>(coarse_rest.rows()));
+}
+
+void ShellProlongation::build_gather_lists(int coarse_vertices) {
+  intrinsic_transpose_ = intrinsic().transpose();
+  face_fine_first_ = bucket_starts(anchor_face_, static_cast<int>(coarse_faces_.rows()));
+  face_fine_ = bucket_items(anchor_face_, face_fine_first_);
+  std::vector<int> corner_vertex(3 * coarse_faces_.rows());
+  for (Eigen::Index c = 0; c < coarse_faces_.rows() * 3; ++c)
+    corner_vertex[c] = coarse_faces_(c / 3, c % 3);
+  vertex_corner_first_ = bucket_starts(corner_vertex, coarse_vertices);
+  vertex_corner_ = bucket_items(corner_vertex, vertex_corner_first_);
 }
 
 bool ShellProlongation::frame_of(const Positions& x, int f, Mat3& frame) const {
   const Vec3 x0 = x.row(coarse_faces_(f, 0));
-  return face_frame(Vec3(x.row(coarse_faces_(f, 1))) - x0, Vec3(x.row(coarse_faces_(f, 2))) - x0,
-                    face_rest_inverse_[f], frame);
+  const Vec3 d1 = Vec3(x.row(coarse_faces_(f, 1))) - x0, d2 = Vec3(x.row(coarse_faces_(f, 2))) - x0;
+  return face_frame(d1, d2, face_rest_inverse_[f], frame);
 }
 
 Vec3 ShellProlongation::offset(const Positions& coarse, Eigen::Index i) const {
   Mat3 frame;
   if (!frame_of(coarse, anchor_face_[i], frame)) return Vec3::Zero();
   return frame * local_offset_[i];
+}
+
+void ShellProlongation::add_jacobian_transpose(
+    const Positions& coarse, const Positions& fine_gradient, Positions& coarse_gradient,
+    std::vector<Eigen::Matrix<double, 9, 1>>& workspace) const {
+  check_shapes(coarse, fine_gradient, "add_jacobian_transpose");
+  if (coarse_gradient.rows() != coarse.rows())
+    fail(Status::invalid_argument,
+         "shell prolongation: add_jacobian_transpose: the coarse gradient has " +
+             std::to_string(coarse_gradient.rows()) + " rows, not " +
+             std::to_string(coarse.rows()));
+  // dP/dx = U + ∂a/∂x (PSQ eqs. 5 and 9): Jᵀg = Uᵀg + Σ_f ∂⟨Q_f(x), M_f⟩/∂x with
+  // M_f = Σ_{i on f} g_i c_iᵀ, c_i = (t₁, t₂, γ): one derivative of the frame per coarse face.
+  const Eigen::Index faces = coarse_faces_.rows(), n = coarse.rows();
+  workspace.resize(faces);
+#pragma omp parallel for schedule(static) if (faces >= kMinParallelItems)
+  for (Eigen::Index f = 0; f < faces; ++f) {
+    Mat3 weight = Mat3::Zero();
+    for (int k = face_fine_first_[f]; k < face_fine_first_[f + 1]; ++k)
+      weight +=
+          fine_gradient.row(face_fine_[k]).transpose() * local_offset_[face_fine_[k]].transpose();
+    const Vec3 x0 = coarse.row(coarse_faces_(f, 0));
+    const Vec3 d1 = Vec3(coarse.row(coarse_faces_(f, 1))) - x0;
+    const Vec3 d2 = Vec3(coarse.row(coarse_faces_(f, 2))) - x0;
+    const Eigen::Matrix<double, 6, 1> d = frame_gradient(d1, d2, face_rest_inverse_[f], weight);
+    workspace[f] << -(d.head<3>() + d.tail<3>()), d.head<3>(), d.tail<3>();
+  }
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+  for (Eigen::Index v = 0; v < n; ++v) {
+    Vec3 sum = Vec3::Zero();
+    for (ProlongationMatrix::InnerIterator it(intrinsic_transpose_, v); it; ++it)
+      sum += it.value() * fine_gradient.row(it.col()).transpose();
+    for (int k = vertex_corner_first_[v]; k < vertex_corner_first_[v + 1]; ++k)
+      sum += workspace[vertex_corner_[k] / 3].segment<3>(3 * (vertex_corner_[k] % 3));
+    coarse_gradient.row(v) += sum.transpose();
+  }
 }
 
 void ShellProlongation::offsets(const Positions& coarse, Positions& out) const {

@@ -31,6 +31,15 @@ class ShellProlongation final : public Prolongation {
   /// area, so n and R are undefined) gets a_i = 0, i.e. it falls back to its anchor U x.
   void offsets(const Positions& coarse, Positions& out) const override;
 
+  /// coarse_gradient += J(x)ᵀ fine_gradient with J = ∂P/∂x = U + ∂a/∂x, the exact chain rule
+  /// of a fine-level gradient through the prolongation (PSQ eq. 10 uses Uᵀ only, freezing a).
+  /// Shapes: coarse (n_coarse × 3), fine_gradient (n_fine × 3), coarse_gradient (n_coarse × 3).
+  /// OpenMP-parallel, the same result for any thread count, and allocation-free once
+  /// `workspace` (per coarse face, 9 values; reuse it across calls) has been sized.
+  void add_jacobian_transpose(const Positions& coarse, const Positions& fine_gradient,
+                              Positions& coarse_gradient,
+                              std::vector<Eigen::Matrix<double, 9, 1>>& workspace) const;
+
   /// fine = U x + a(x) (n_fine × 3), PSQ eqs. 4, 7, 9; OpenMP-parallel over fine vertices.
   void apply(const Positions& coarse, Positions& fine) const override;
 
@@ -38,13 +47,20 @@ class ShellProlongation final : public Prolongation {
   /// The frame [R(F) | n] (3 × 3) of coarse face f at positions x (PSQ eq. 5, footnote 2);
   /// false if the face has zero or non-finite area there.
   bool frame_of(const Positions& x, int f, Mat3& frame) const;
+  /// The lists add_jacobian_transpose gathers by (built once).
+  void build_gather_lists(int coarse_vertices);
   /// a_i(x) (3) of fine vertex i (PSQ eq. 5).
   Vec3 offset(const Positions& coarse, Eigen::Index i) const;
 
-  Faces coarse_faces_;                   ///< (|F_c| × 3)
-  std::vector<Mat2> face_rest_inverse_;  ///< per coarse face: D̄⁻¹ (2 × 2), F = D D̄⁻¹
-  std::vector<int> anchor_face_;         ///< per fine vertex: its coarse face
-  std::vector<Vec3> local_offset_;       ///< per fine vertex: (t₁, t₂, γ)
+  Faces coarse_faces_;                      ///< (|F_c| × 3)
+  std::vector<Mat2> face_rest_inverse_;     ///< per coarse face: D̄⁻¹ (2 × 2), F = D D̄⁻¹
+  std::vector<int> anchor_face_;            ///< per fine vertex: its coarse face
+  std::vector<Vec3> local_offset_;          ///< per fine vertex: (t₁, t₂, γ)
+  ProlongationMatrix intrinsic_transpose_;  ///< Uᵀ (n_coarse × n_fine), to gather Uᵀg by rows
+  std::vector<int> face_fine_first_;        ///< (|F_c| + 1): fine vertices of face f are
+  std::vector<int> face_fine_;              ///< face_fine_[first[f], first[f + 1])
+  std::vector<int> vertex_corner_first_;    ///< (n_coarse + 1): corners of coarse vertex v,
+  std::vector<int> vertex_corner_;          ///< as 3·face + corner, in increasing order
 };
 
 }  // namespace progsim

@@ -1,7 +1,8 @@
-// Hot paths that must not allocate (STYLE 14): the prolongation operators' apply() and
-// offsets(), called once per Newton iteration of a preview. A separate executable counts every
-// malloc/calloc/realloc in the process (interposing glibc's allocator, which libprogsim and
-// Eigen reach through malloc) around the calls; sanitizer builds, which own malloc, skip it.
+// Hot paths that must not allocate (STYLE 14): the prolongation operators' apply(), offsets()
+// and the chain rule add_jacobian_transpose(), called once per Newton iteration of a preview. A
+// separate executable counts every malloc/calloc/realloc in the process (interposing glibc's
+// allocator, which libprogsim and Eigen reach through malloc) around the calls; sanitizer builds,
+// which own malloc, skip it.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -65,15 +66,19 @@ TEST(AllocationFree, ProlongationApplyAndOffsets) {
                                        h.to_finest[0]);
   const Positions coarse = h.levels[0].rest.vertices * 1.01;
   Positions fine(sheet.num_vertices(), 3), offsets(sheet.num_vertices(), 3);
+  Positions coarse_gradient = Positions::Zero(coarse.rows(), 3);
+  std::vector<Eigen::Matrix<double, 9, 1>> workspace;
   ASSERT_GT(allocations.load(), 0) << "the counting allocator is not in use";
   for (int threads : {1, 2}) {
     omp_set_num_threads(threads);
     shell.apply(coarse, fine);  // warm-up: OpenMP creates its thread team once
+    shell.add_jacobian_transpose(coarse, fine, coarse_gradient, workspace);  // sizes workspace
     const long count = allocations_in([&] {
       for (int k = 0; k < 10; ++k) {
         shell.apply(coarse, fine);
         shell.offsets(coarse, offsets);
         linear.apply(coarse, fine);
+        shell.add_jacobian_transpose(coarse, fine, coarse_gradient, workspace);
       }
     });
     EXPECT_EQ(count, 0) << threads << " thread(s)";
