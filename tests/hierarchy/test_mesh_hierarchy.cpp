@@ -15,6 +15,7 @@
 
 #include "hierarchy/expansion_coloring.hpp"
 #include "hierarchy/hierarchy_io.hpp"
+#include "hierarchy/hierarchy_test_meshes.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "mesh/mesh_generators.hpp"
@@ -28,16 +29,6 @@ using namespace progsim::test_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-/// A spherical cap of radius 1 over a 24 × 24 grid: a curved open surface.
-TriangleMesh dome() {
-  TriangleMesh mesh = make_grid(1.2, 1.2, 24, 24);
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const double x = mesh.vertices(v, 0) - 0.6, y = mesh.vertices(v, 1) - 0.6;
-    mesh.vertices.row(v) << x, y, std::sqrt(1.0 - x * x - y * y);
-  }
-  return mesh;
-}
 
 /// A grid with random diagonals, in-plane jitter and a random height field: irregular.
 TriangleMesh irregular_sheet() {
@@ -84,7 +75,7 @@ struct Case {
 
 std::vector<Case> cases() {
   return {{"flat sheet", make_grid(1.0, 1.0, 30, 30), {60, 240}},
-          {"dome", dome(), {50, 200}},
+          {"dome", dome(24), {50, 200}},
           {"closed sphere", make_sphere(1.0, 3), {42, 160}},
           {"elephant with holes", real_mesh("elephant-with-holes.off"), {500, 1200}},
           {"irregular sheet", irregular_sheet(), {50, 200}},
@@ -300,7 +291,7 @@ TEST(HierarchySmoothness, BentCoarseLevelsProlongWithoutSpikes) {
     TriangleMesh mesh;
     std::function<Eigen::RowVector3d(const Eigen::RowVector3d&)> map;
   };
-  for (const Bend& bend : {Bend{make_grid(1.0, 1.0, 40, 40), cylinder}, Bend{dome(), height}}) {
+  for (const Bend& bend : {Bend{make_grid(1.0, 1.0, 40, 40), cylinder}, Bend{dome(24), height}}) {
     HierarchyOptions options;
     options.coarse_vertex_counts = {100};
     const MeshHierarchy h = build_hierarchy(bend.mesh, options);

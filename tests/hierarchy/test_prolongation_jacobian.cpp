@@ -5,25 +5,18 @@
 
 #include <random>
 
+#include "hierarchy/hierarchy_test_meshes.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "mesh/mesh_generators.hpp"
 
 using namespace progsim;
+using namespace progsim::test_support;
 
 namespace {
 
-TriangleMesh dome() {
-  TriangleMesh mesh = make_grid(1.2, 1.2, 16, 16);
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const double x = mesh.vertices(v, 0) - 0.6, y = mesh.vertices(v, 1) - 0.6;
-    mesh.vertices.row(v) << x, y, std::sqrt(1.0 - x * x - y * y);
-  }
-  return mesh;
-}
-
 TEST(ShellProlongationJacobian, MatchesFiniteDifferences) {
-  for (const TriangleMesh& mesh : {dome(), make_grid(1.0, 1.0, 16, 16)}) {
+  for (const TriangleMesh& mesh : {dome(16), make_grid(1.0, 1.0, 16, 16)}) {
     HierarchyOptions options;
     options.coarse_vertex_counts = {40};
     const MeshHierarchy h = build_hierarchy(mesh, options);
