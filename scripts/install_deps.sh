@@ -7,7 +7,7 @@ set -euo pipefail
 APT_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas-openmp-dev libcgal-dev
-  nlohmann-json3-dev libcli11-dev libgtest-dev
+  nlohmann-json3-dev libcli11-dev libgtest-dev libcairo2-dev fonts-dejavu-core
   clang-format clang-14 libclang-rt-14-dev libomp-14-dev libclang-dev
   python3-pip python3-venv
 )
