@@ -37,6 +37,8 @@ ps_status to_ps_status(Status status) {
       return PS_ERROR_INTERSECTING;
     case Status::internal:
       return PS_ERROR_INTERNAL;
+    case Status::unsupported:
+      return PS_ERROR_UNSUPPORTED;
   }
   return PS_ERROR_INTERNAL;
 }

@@ -26,6 +26,8 @@ const char* status_name(Status status) {
       return "intersecting";
     case Status::internal:
       return "internal";
+    case Status::unsupported:
+      return "unsupported";
   }
   return "unknown";
 }

@@ -19,6 +19,7 @@ enum class Status : int {
   cancelled = 8,          ///< a progress callback asked to stop
   intersecting = 9,       ///< a configuration intersects itself or another body
   internal = 10,          ///< a bug in progsim; please report it
+  unsupported = 16,       ///< a valid request this version cannot do yet (same value as the C ABI)
 };
 
 /// Short stable name of a status ("invalid_mesh", ...).

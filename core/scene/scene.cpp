@@ -81,6 +81,23 @@ void validate_handle(const Scene& scene, std::size_t h) {
   validate_motion(handle.motion, where);
 }
 
+void validate_progressive(const ProgressiveSettings& p) {
+  const std::string where = "progressive";
+  if (p.coarse_levels < 0 || p.coarse_levels > 30)
+    fail(Status::invalid_scene,
+         where + ".coarse_levels = " + std::to_string(p.coarse_levels) + " must lie in [0, 30]");
+  if (!(p.coarsening_ratio > 1.0) || !std::isfinite(p.coarsening_ratio))
+    fail(Status::invalid_scene, where + ".coarsening_ratio must be a finite number > 1");
+  if (!(p.preview_tolerance >= 0.0 && p.preview_tolerance <= 1.0))
+    fail(Status::invalid_scene, where + ".preview_tolerance must lie in [0, 1]");
+  if (p.preview_iterations < 1)
+    fail(Status::invalid_scene, where + ".preview_iterations must be >= 1");
+  for (int n : p.level_vertices)
+    if (n < 4)
+      fail(Status::invalid_scene, where + ".levels: a level of " + std::to_string(n) +
+                                      " vertices is too small (at least 4)");
+}
+
 }  // namespace
 
 void validate_scene(const Scene& scene) {
@@ -103,6 +120,7 @@ void validate_scene(const Scene& scene) {
   }
   for (std::size_t h = 0; h < scene.handles.size(); ++h) validate_handle(scene, h);
   validate_contact(scene);
+  validate_progressive(scene.progressive);
 }
 
 }  // namespace progsim

@@ -74,6 +74,28 @@ struct Handle {
   HandleMotion motion;
 };
 
+/// How the proxy energy of a coarse level reaches the finest mesh (PSQ §4.3).
+enum class ProxyProlongation {
+  composed,  ///< P_L^{L−1} ∘ ⋯ ∘ P_{l+1}^l: each level's offsets rotate with its own faces
+  direct,    ///< P^l (PSQ eq. 9): every finest offset rotates with one level-l face
+};
+
+/// How a scene is simulated progressively (PSQ, Zhang et al. 2023): the levels of its mesh
+/// hierarchy and how much work a preview step does.
+struct ProgressiveSettings {
+  int coarse_levels = 0;          ///< levels below the scene's mesh; 0: a direct simulation
+  double coarsening_ratio = 4.0;  ///< vertex-count ratio between successive levels (> 1)
+  /// Explicit vertex counts of the coarse levels (coarsest first); overrides the two above.
+  std::vector<int> level_vertices;
+  int preview_iterations = 8;  ///< Newton iterations per preview step (PSQ §4.5, Algorithm 1)
+  /// Newton tolerance of preview solves (PSQ Algorithm 1 line 10); 0: the solver's tolerance.
+  double preview_tolerance = 0.0;
+  ProxyProlongation prolongation = ProxyProlongation::composed;
+
+  /// True when the scene asks for more than one level.
+  bool enabled() const { return coarse_levels > 0 || !level_vertices.empty(); }
+};
+
 /// Everything needed to run a simulation.
 struct Scene {
   std::string name = "scene";
@@ -89,6 +111,7 @@ struct Scene {
   Ground ground;                    ///< analytic ground (needs the contact effect)
   ContactSettings contact;
   NewtonSettings solver;
+  ProgressiveSettings progressive;
 
   /// Number of steps: round(duration / time_step), at least 1.
   int num_steps() const;

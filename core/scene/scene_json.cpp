@@ -297,10 +297,39 @@ void solver(const Json& j, Scene& scene) {
       static_cast<int>(parameter(j, "solver", "max_newton_iterations", "solver"));
 }
 
+/// The "progressive" section: {"coarse_levels": k, "coarsening_ratio": r} or {"levels": [...]}
+/// plus "preview_iterations".
+ProgressiveSettings progressive(const Json& j) {
+  const std::string where = "progressive";
+  expect_keys(j, where,
+              {"coarse_levels", "coarsening_ratio", "levels", "preview_iterations",
+               "preview_tolerance", "prolongation"});
+  ProgressiveSettings p;
+  if (j.contains("coarse_levels"))
+    p.coarse_levels = integer(j.at("coarse_levels"), where + ".coarse_levels");
+  p.coarsening_ratio = number_or(j, "coarsening_ratio", p.coarsening_ratio, where);
+  p.preview_tolerance = number_or(j, "preview_tolerance", p.preview_tolerance, where);
+  if (j.contains("preview_iterations"))
+    p.preview_iterations = integer(j.at("preview_iterations"), where + ".preview_iterations");
+  const std::string prolongation = j.value("prolongation", std::string("composed"));
+  if (prolongation == "direct")
+    p.prolongation = ProxyProlongation::direct;
+  else if (prolongation != "composed")
+    scene_error(where + ".prolongation",
+                "unknown '" + prolongation + "' (known: composed, direct)");
+  if (j.contains("levels")) {
+    const Json& levels = j.at("levels");
+    if (!levels.is_array()) scene_error(where + ".levels", "must be an array of vertex counts");
+    for (std::size_t k = 0; k < levels.size(); ++k)
+      p.level_vertices.push_back(integer(levels[k], where + ".levels[" + std::to_string(k) + "]"));
+  }
+  return p;
+}
+
 Scene scene_from_json(const Json& root, const std::string& base_dir) {
   expect_keys(root, "scene",
               {"name", "simulation", "gravity", "effects", "solver", "bodies", "handles", "contact",
-               "obstacles", "ground"});
+               "obstacles", "ground", "progressive"});
   Scene scene;
   scene.name = root.value("name", std::string("scene"));
   simulation(root.contains("simulation") ? root.at("simulation") : Json::object(), scene);
@@ -324,6 +353,7 @@ Scene scene_from_json(const Json& root, const std::string& base_dir) {
           handle(handles[h], scene.bodies, "handles[" + std::to_string(h) + "]"));
   }
   contact(root.contains("contact") ? root.at("contact") : Json::object(), scene);
+  if (root.contains("progressive")) scene.progressive = progressive(root.at("progressive"));
   if (root.contains("obstacles")) {
     const Json& obstacles = root.at("obstacles");
     if (!obstacles.is_array()) scene_error("obstacles", "must be an array");

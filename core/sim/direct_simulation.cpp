@@ -4,14 +4,13 @@
 
 #include "common/error.hpp"
 #include "common/timer.hpp"
-#include "energy/gravity.hpp"
-#include "energy/hinge_bending.hpp"
 #include "energy/inertia.hpp"
-#include "energy/neo_hookean_membrane.hpp"
 #include "energy/pressure.hpp"
 #include "mesh/intersection_check.hpp"
+#include "progressive/prolonged_elastics.hpp"
 #include "sim/contact_setup.hpp"
 #include "sim/obstacle_script.hpp"
+#include "sim/shell_elastics.hpp"
 
 namespace progsim {
 namespace {
@@ -42,27 +41,53 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
   total.timings = timings;
 }
 
-/// Faces of body b, renumbered into the merged model.
-Faces body_faces(const ShellModel& model, int b) {
-  return model.rest.faces.middleRows(model.face_offset[b],
-                                     model.face_offset[b + 1] - model.face_offset[b]);
-}
-
 }  // namespace
 
-DirectSimulation::DirectSimulation(Scene scene)
+DirectSimulation::DirectSimulation(Scene scene) : DirectSimulation(std::move(scene), {}) {}
+
+DirectSimulation::DirectSimulation(Scene scene, SimulationLevel level, const Vector* start,
+                                   int steps_taken)
     : scene_(validated(std::move(scene))),
-      model_(build_shell_model(scene_)),
-      handles_(scene_, model_),
-      obstacles_(std::make_unique<ObstacleScript>(scene_)) {
-  x_ = as_dofs(model_.rest.vertices);
+      level_(std::move(level)),
+      obstacles_(std::make_unique<ObstacleScript>(scene_)),
+      steps_taken_(steps_taken) {
+  if (level_.hierarchy && !level_.is_finest() && scene_.mode == StepMode::dynamic)
+    fail(Status::unsupported, scene_.name +
+                                  ": dynamic scenes on coarse levels (Progressive Dynamics) are "
+                                  "not implemented; use the quasistatic mode");
+  build_models();
+  const int n = model_.rest.num_vertices();
+  if (start && start->size() != 3 * n)
+    fail(Status::invalid_argument, "the start state has " + std::to_string(start->size()) +
+                                       " DOFs, level " + std::to_string(level_.level) + " has " +
+                                       std::to_string(3 * n));
+  x_ = start ? *start : as_dofs(model_.rest.vertices);
   v_ = Vector::Zero(x_.size());
-  if (scene_.mode == StepMode::dynamic)
+  if (scene_.mode == StepMode::dynamic && !start)
     for (std::size_t b = 0; b < scene_.bodies.size(); ++b)
       for (int v = model_.vertex_offset[b]; v < model_.vertex_offset[b + 1]; ++v)
         v_.segment<3>(3 * v) = scene_.bodies[b].velocity;
   length_ = bounding_box_diagonal(model_.rest.vertices);
   build_problem();
+}
+
+void DirectSimulation::build_models() {
+  ShellModel finest = build_shell_model(scene_);
+  const std::vector<int> finest_handles = vertex_handles(scene_, finest);
+  if (!level_.hierarchy || level_.is_finest()) {
+    if (level_.hierarchy) check_hierarchy_matches(*level_.hierarchy, finest.rest, finest_handles);
+    handles_ = HandleTargets(scene_, finest.rest.vertices, finest_handles);
+    model_ = std::move(finest);
+    finest_.reset();
+    return;
+  }
+  const MeshHierarchy& h = *level_.hierarchy;
+  check_hierarchy_matches(h, finest.rest, finest_handles);
+  model_ = level_shell_model(finest, h, level_.level);
+  finest_handles_ = HandleTargets(scene_, finest.rest.vertices, finest_handles);
+  handles_ = HandleTargets(scene_, model_.rest.vertices, level_groups(h, level_.level));
+  finest_ =
+      !level_.to_finest.empty() ? std::make_shared<const ShellModel>(std::move(finest)) : nullptr;
 }
 
 DirectSimulation::~DirectSimulation() = default;
@@ -75,24 +100,9 @@ void DirectSimulation::build_problem() {
   Inertia* inertia = nullptr;
   std::vector<std::pair<Pressure*, int>> pressures;
   const EffectSet& fx = scene_.effects;
-  const Positions& rest = model_.rest.vertices;
   if (scene_.mode == StepMode::dynamic)
     inertia = &problem->add_term(std::make_unique<Inertia>(model_.vertex_masses, scene_.time_step));
-  if (fx.has(Effect::membrane))
-    problem->add_term(
-        std::make_unique<NeoHookeanMembrane>(rest, model_.rest.faces, model_.face_materials));
-  if (fx.has(Effect::bending))
-    problem->add_term(std::make_unique<HingeBending>(
-        rest, model_.rest.faces, model_.topology.hinges, model_.face_materials));
-  if (fx.has(Effect::gravity))
-    problem->add_term(std::make_unique<Gravity>(model_.vertex_masses, scene_.gravity));
-  if (fx.has(Effect::pressure)) {
-    for (int b = 0; b < static_cast<int>(scene_.bodies.size()); ++b) {
-      if (scene_.bodies[b].pressure == 0.0) continue;
-      auto term = std::make_unique<Pressure>(rest, body_faces(model_, b), 0.0);
-      pressures.emplace_back(&problem->add_term(std::move(term)), b);
-    }
-  }
+  add_elastics(*problem, pressures);
   ContactPotential* contact = fx.has(Effect::contact) ? &add_contact(*problem) : nullptr;
   FrictionPotential* friction = nullptr;
   if (contact && fx.has(Effect::friction))
@@ -109,6 +119,27 @@ void DirectSimulation::build_problem() {
   contact_ = contact;
   friction_ = friction;
   strain_limit_ = strain_limit;
+  proxy_ = dynamic_cast<ProlongedElastics*>(problem_->find_term("prolonged_elastics"));
+  pin_finest_handles(time());
+}
+
+void DirectSimulation::pin_finest_handles(double t) {
+  if (proxy_) proxy_->pin_finest_vertices(finest_handles_.vertices(), finest_handles_.targets(t));
+}
+
+void DirectSimulation::add_elastics(Problem& problem,
+                                    std::vector<std::pair<Pressure*, int>>& pressures) const {
+  ShellElastics own = make_shell_elastics(scene_, model_, !finest_);
+  pressures = own.pressures;
+  if (!finest_) {
+    for (auto& term : own.terms) problem.add_term(std::move(term));
+    return;
+  }
+  ShellElastics finest = make_shell_elastics(scene_, *finest_, true);
+  if (finest.terms.empty()) return;
+  pressures.insert(pressures.end(), finest.pressures.begin(), finest.pressures.end());
+  problem.add_term(std::make_unique<ProlongedElastics>(level_.to_finest, std::move(finest.terms),
+                                                       std::move(own.terms)));
 }
 
 ContactPotential& DirectSimulation::add_contact(Problem& problem) {
@@ -123,9 +154,9 @@ ContactPotential& DirectSimulation::add_contact(Problem& problem) {
   all.bottomRows(contact->mesh().num_obstacle_vertices) = contact->obstacle_positions();
   const auto crossing = intersecting_faces(all, contact->mesh().faces, 1);  // CGAL, exact
   if (!crossing.empty())
-    fail(Status::intersecting, scene_.name + ": the start intersects: " +
-                                   describe_face(contact->mesh(), crossing[0].a) + " and " +
-                                   describe_face(contact->mesh(), crossing[0].b) + " cross");
+    fail(Status::intersecting,
+         scene_.name + ": the start intersects: " + describe_face(contact->mesh(), crossing[0].a) +
+             " and " + describe_face(contact->mesh(), crossing[0].b) + " cross");
   contact->check_separated(x_);
   return problem.add_term(std::move(contact));
 }
@@ -182,18 +213,20 @@ void DirectSimulation::update_scene(Scene scene) {
   if (!same_size)
     fail(Status::invalid_argument, "update_scene: the bodies' meshes must keep their sizes");
   std::swap(scene_, scene);
-  ShellModel model = build_shell_model(scene_);
-  std::swap(model_, model);
-  HandleTargets handles(scene_, model_);
-  std::swap(handles_, handles);
+  ShellModel model = model_;
+  HandleTargets handles = handles_, finest_handles = finest_handles_;
+  std::shared_ptr<const ShellModel> finest = finest_;
   auto obstacles = std::make_unique<ObstacleScript>(scene_);
   std::swap(obstacles_, obstacles);
   try {
+    build_models();
     build_problem();
   } catch (const Error&) {  // e.g. a thicker shell now overlaps: keep the previous scene
     std::swap(scene_, scene);
-    std::swap(model_, model);
-    std::swap(handles_, handles);
+    model_ = std::move(model);
+    handles_ = std::move(handles);
+    finest_handles_ = std::move(finest_handles);
+    finest_ = std::move(finest);
     std::swap(obstacles_, obstacles);
     throw;
   }
@@ -201,32 +234,50 @@ void DirectSimulation::update_scene(Scene scene) {
 }
 
 StepRecord DirectSimulation::step() {
+  return solve_at((steps_taken_ + 1) * scene_.time_step, true);
+}
+
+StepRecord DirectSimulation::settle() {
+  return solve_at(time(), false);
+}
+
+StepRecord DirectSimulation::solve_at(double t, bool new_step) {
   Timer timer;
-  const std::vector<TermStats> before = problem_->term_stats();
+  const std::vector<TermStats> before = term_totals();
   const double h = scene_.time_step;
-  const double t = (steps_taken_ + 1) * h;
   x_previous_ = x_;
   if (inertia_) inertia_->set_target(x_ + h * v_);  // x̂ = xᵗ + h vᵗ (implicit Euler)
   if (contact_) contact_->reset_min_gap();
   const ContactStats contact_before = contact_ ? contact_->stats() : ContactStats{};
-  if (friction_) friction_->lag(x_);  // lagged friction (IPC §5): frozen at the step's start
+  if (friction_ && new_step)
+    friction_->lag(x_);  // lagged friction (IPC §5): frozen at the step's start
   apply_pressure(t);
+  pin_finest_handles(t);
   StepRecord record;
   const double decrement_scale = inertia_ ? h : 1.0;
   record.script_reached = advance_scripts(t, decrement_scale, record.newton);
   accumulate(record.newton,
              solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
   if (inertia_) v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
-  ++steps_taken_;
+  if (new_step) ++steps_taken_;
   record.step = steps_taken_;
   record.time = t;
-  for (std::size_t k = 0; k < before.size(); ++k)
-    record.terms.push_back(problem_->term_stats()[k].since(before[k]));
+  const std::vector<TermStats> after = term_totals();
+  for (std::size_t k = 0; k < before.size(); ++k) record.terms.push_back(after[k].since(before[k]));
   if (contact_) record.contact = contact_->stats().since(contact_before);
   if (friction_) record.friction_contacts = friction_->num_contacts();
   if (strain_limit_) record.max_stretch = strain_limit_->max_stretch(x_);
   record.seconds = timer.seconds();
   return record;
+}
+
+std::vector<TermStats> DirectSimulation::term_totals() const {
+  std::vector<TermStats> totals = problem_->term_stats();
+  if (proxy_) {
+    const std::vector<TermStats> finest = proxy_->finest_term_stats();
+    totals.insert(totals.end(), finest.begin(), finest.end());
+  }
+  return totals;
 }
 
 }  // namespace progsim

@@ -8,6 +8,7 @@
 #include "scene/scene.hpp"
 #include "sim/handle_targets.hpp"
 #include "sim/shell_model.hpp"
+#include "sim/simulation_level.hpp"
 #include "sim/step_record.hpp"
 #include "solve/newton_solver.hpp"
 
@@ -19,6 +20,7 @@ class ContactPotential;
 class FrictionPotential;
 class StrainLimit;
 class ObstacleScript;
+class ProlongedElastics;
 
 /// Builds one energy term per enabled effect and advances the scene step by step with
 /// projected Newton. Dynamic scenes minimise the implicit-Euler incremental potential;
@@ -29,6 +31,14 @@ class DirectSimulation {
   /// scene whose shell and obstacles intersect (CGAL exact predicates) or come within their
   /// contact offsets is rejected with Error(intersecting) naming the pair.
   explicit DirectSimulation(Scene scene);
+  /// The scene solved at one level of a hierarchy built from its merged bodies (with the
+  /// scene's handles as vertex groups), starting from `start` (3|V_l|, or the level's rest
+  /// shape when null) after `steps_taken` steps. With `level.to_finest` set the shell energy is
+  /// the proxy Ψ_L(P^l(x)) of progressive preview (PSQ eq. 2); otherwise the level's own.
+  /// Throws Error(unsupported) for a dynamic scene on a coarse level (progressive dynamics is
+  /// not implemented), Error(invalid_argument) if the hierarchy does not match the scene.
+  DirectSimulation(Scene scene, SimulationLevel level, const Vector* start = nullptr,
+                   int steps_taken = 0);
   DirectSimulation(const DirectSimulation&) = delete;
   DirectSimulation& operator=(const DirectSimulation&) = delete;
   ~DirectSimulation();
@@ -37,6 +47,10 @@ class DirectSimulation {
   /// reported in the record's stop reason and the state stays finite (the last iterate
   /// the line search accepted).
   StepRecord step();
+
+  /// Solves again at the current time with the same loads (no time advance, friction not
+  /// re-lagged): reaches equilibrium after a refinement or a parameter change.
+  StepRecord settle();
 
   /// Replaces the scene between steps (materials, loads, handles, effects, time step,
   /// solver settings) and rebuilds the problem, keeping positions, velocities and time.
@@ -52,19 +66,30 @@ class DirectSimulation {
   /// Current velocities (3|V|), m/s (zero for quasistatic scenes).
   const Vector& velocities() const { return v_; }
   const ShellModel& model() const { return model_; }
+  const SimulationLevel& level() const { return level_; }
   const Scene& scene() const { return scene_; }
   Problem& problem() { return *problem_; }
   /// Bounding-box diagonal of the rest shape (m): the length scale of tolerances.
   double characteristic_length() const { return length_; }
   /// Total counters per term since construction.
-  const std::vector<TermStats>& term_totals() const { return problem_->term_stats(); }
+  /// With the proxy energy, the finest-level terms evaluated through it follow, named
+  /// "<term>@finest".
+  std::vector<TermStats> term_totals() const;
   /// The contact term, or nullptr when the scene does not enable contact.
   const ContactPotential* contact() const { return contact_; }
   /// Obstacle vertex positions now (|V_obstacles| × 3); empty without obstacles.
   Positions obstacle_positions() const;
 
  private:
+  /// model_, handles_ (and finest_ for the proxy) from scene_ and level_.
+  void build_models();
   void build_problem();
+  /// Membrane, bending, gravity and pressure: direct, or through the prolongation.
+  void add_elastics(Problem& problem, std::vector<std::pair<Pressure*, int>>& pressures) const;
+  /// One solve at time t (a new step when advancing, the same loads otherwise).
+  StepRecord solve_at(double t, bool new_step);
+  /// Holds the finest level's handle vertices at their targets at time t in the proxy.
+  void pin_finest_handles(double t);
   /// Adds the contact term after checking that the current state does not intersect.
   ContactPotential& add_contact(Problem& problem);
   void apply_pressure(double t);
@@ -73,7 +98,9 @@ class DirectSimulation {
   double advance_scripts(double t, double decrement_scale, NewtonReport& report);
 
   Scene scene_;
+  SimulationLevel level_;
   ShellModel model_;
+  std::shared_ptr<const ShellModel> finest_;  // the finest model, for the proxy energy only
   HandleTargets handles_;
   std::unique_ptr<Problem> problem_;
   NewtonSolver solver_;
@@ -83,6 +110,8 @@ class DirectSimulation {
   ContactPotential* contact_ = nullptr;    // owned by problem_, null without contact
   FrictionPotential* friction_ = nullptr;  // owned by problem_, null without friction
   StrainLimit* strain_limit_ = nullptr;    // owned by problem_, null without a limit
+  ProlongedElastics* proxy_ = nullptr;     // owned by problem_, null for direct solves
+  HandleTargets finest_handles_;           // the finest level's handles, held exactly by proxy_
   Vector x_, v_, x_previous_, script_target_, script_step_;
   int steps_taken_ = 0;
   double length_ = 1.0;

@@ -9,10 +9,14 @@
 #include <atomic>
 #include <cstddef>
 
+#include "energy/hinge_bending.hpp"
+#include "energy/neo_hookean_membrane.hpp"
 #include "hierarchy/barycentric_prolongation.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "mesh/mesh_generators.hpp"
+#include "mesh/mesh_topology.hpp"
+#include "progressive/prolonged_elastics.hpp"
 
 extern "C" {
 void* __libc_malloc(std::size_t size);
@@ -79,6 +83,38 @@ TEST(AllocationFree, ProlongationApplyAndOffsets) {
         shell.offsets(coarse, offsets);
         linear.apply(coarse, fine);
         shell.add_jacobian_transpose(coarse, fine, coarse_gradient, workspace);
+      }
+    });
+    EXPECT_EQ(count, 0) << threads << " thread(s)";
+  }
+}
+
+TEST(AllocationFree, ProxyEnergyValueAndGradient) {
+  // The preview's proxy Ψ_L(P(x)) through two composed operators (PSQ eqs. 2 and 7).
+  const TriangleMesh sheet = make_grid(1.0, 1.0, 60, 60);
+  HierarchyOptions options;
+  options.coarse_vertex_counts = {150, 600};
+  const MeshHierarchy h = build_hierarchy(sheet, options);
+  const std::vector<ShellMaterial> materials(sheet.num_faces());
+  std::vector<std::unique_ptr<EnergyTerm>> finest;
+  finest.push_back(std::make_unique<NeoHookeanMembrane>(sheet.vertices, sheet.faces, materials));
+  finest.push_back(std::make_unique<HingeBending>(
+      sheet.vertices, sheet.faces, build_topology(sheet.faces, sheet.num_vertices()).hinges,
+      materials));
+  const ProlongedElastics proxy(
+      {std::make_shared<const ShellProlongation>(next_level_prolongation(h, 0)),
+       std::make_shared<const ShellProlongation>(next_level_prolongation(h, 1))},
+      std::move(finest), {});
+  Vector x = as_dofs(h.levels[0].rest.vertices);
+  for (int v = 0; v < h.levels[0].rest.num_vertices(); ++v) x[3 * v + 2] = 0.01 * (v % 7);
+  Vector g = Vector::Zero(x.size());
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    proxy.add_gradient(x, g);  // warm-up: OpenMP's thread team and the Jacobian workspaces
+    const long count = allocations_in([&] {
+      for (int k = 0; k < 10; ++k) {
+        proxy.value(x);
+        proxy.add_gradient(x, g);
       }
     });
     EXPECT_EQ(count, 0) << threads << " thread(s)";

@@ -131,3 +131,33 @@ TEST(SceneJson, RejectsInvalidJsonAndMissingFiles) {
     EXPECT_EQ(e.status(), Status::io_error);
   }
 }
+
+TEST(SceneJson, ReadsTheProgressiveSection) {
+  const Scene scene =
+      parse_scene(scene_text("", R"(, "progressive": {"coarse_levels": 2, "coarsening_ratio": 3.5,
+                       "preview_iterations": 4, "preview_tolerance": 1e-4,
+                       "prolongation": "direct"})"),
+                  ".");
+  EXPECT_EQ(scene.progressive.coarse_levels, 2);
+  EXPECT_EQ(scene.progressive.coarsening_ratio, 3.5);
+  EXPECT_EQ(scene.progressive.preview_iterations, 4);
+  EXPECT_EQ(scene.progressive.preview_tolerance, 1e-4);
+  EXPECT_EQ(scene.progressive.prolongation, ProxyProlongation::direct);
+  EXPECT_TRUE(scene.progressive.enabled());
+  const Scene levels = parse_scene(scene_text("", R"(, "progressive": {"levels": [5, 9]})"), ".");
+  EXPECT_EQ(levels.progressive.level_vertices, (std::vector<int>{5, 9}));
+  EXPECT_EQ(levels.progressive.prolongation, ProxyProlongation::composed);
+  EXPECT_FALSE(parse_scene(scene_text(), ".").progressive.enabled());
+}
+
+TEST(SceneJson, RejectsBadProgressiveSettings) {
+  expect_scene_error(scene_text("", R"(, "progressive": {"levles": [5]})"), "unknown key 'levles'");
+  expect_scene_error(scene_text("", R"(, "progressive": {"coarse_levels": -1})"), "coarse_levels");
+  expect_scene_error(scene_text("", R"(, "progressive": {"coarsening_ratio": 1})"),
+                     "coarsening_ratio");
+  expect_scene_error(scene_text("", R"(, "progressive": {"levels": [2]})"), "too small");
+  expect_scene_error(scene_text("", R"(, "progressive": {"prolongation": "cubic"})"),
+                     "unknown 'cubic'");
+  expect_scene_error(scene_text("", R"(, "progressive": {"preview_iterations": 0})"),
+                     "preview_iterations");
+}

@@ -1,0 +1,194 @@
+#include "progressive/progressive_simulation.hpp"
+
+#include <algorithm>
+
+#include "common/error.hpp"
+#include "common/timer.hpp"
+#include "hierarchy/level_prolongation.hpp"
+#include "sim/handle_targets.hpp"
+
+namespace progsim {
+namespace {
+
+Scene validated(Scene scene) {
+  validate_scene(scene);
+  return scene;
+}
+
+/// Coarse level sizes the settings ask for (coarsest first); empty for a direct simulation.
+std::vector<int> coarse_counts(const ProgressiveSettings& p, int finest_vertices) {
+  if (!p.level_vertices.empty()) return p.level_vertices;
+  if (p.coarse_levels == 0) return {};
+  return geometric_level_counts(finest_vertices, p.coarsening_ratio, p.coarse_levels);
+}
+
+bool same_levels(const ProgressiveSettings& a, const ProgressiveSettings& b) {
+  return a.coarse_levels == b.coarse_levels && a.coarsening_ratio == b.coarsening_ratio &&
+         a.level_vertices == b.level_vertices;
+}
+
+}  // namespace
+
+MeshHierarchy build_scene_hierarchy(const Scene& scene, HierarchyProgress progress, void* user) {
+  validate_scene(scene);
+  const ShellModel model = build_shell_model(scene);
+  HierarchyOptions options;
+  options.coarse_vertex_counts = coarse_counts(scene.progressive, model.rest.num_vertices());
+  options.vertex_groups = vertex_handles(scene, model);
+  return build_hierarchy(model.rest, options, progress, user);
+}
+
+ProgressiveSimulation::ProgressiveSimulation(Scene scene,
+                                             std::shared_ptr<const MeshHierarchy> hierarchy,
+                                             HierarchyProgress progress, void* user)
+    : scene_(validated(std::move(scene))), hierarchy_(std::move(hierarchy)) {
+  if (!hierarchy_)
+    hierarchy_ =
+        std::make_shared<const MeshHierarchy>(build_scene_hierarchy(scene_, progress, user));
+  to_finest_.resize(hierarchy_->num_levels());
+  to_next_.resize(hierarchy_->num_levels());
+  records_.resize(hierarchy_->num_levels());
+  sim_ = make_level(0, nullptr, 0);
+}
+
+ProgressiveSimulation::~ProgressiveSimulation() = default;
+
+const std::shared_ptr<const ShellProlongation>& ProgressiveSimulation::direct_operator(
+    int level) const {
+  if (!to_finest_[level])
+    to_finest_[level] =
+        std::make_shared<const ShellProlongation>(direct_prolongation(*hierarchy_, level));
+  return to_finest_[level];
+}
+
+const std::shared_ptr<const ShellProlongation>& ProgressiveSimulation::next_operator(
+    int level) const {
+  if (!to_next_[level])
+    to_next_[level] =
+        std::make_shared<const ShellProlongation>(next_level_prolongation(*hierarchy_, level));
+  return to_next_[level];
+}
+
+std::vector<std::shared_ptr<const ShellProlongation>> ProgressiveSimulation::to_finest(
+    int level) const {
+  if (level < 0 || level >= finest())
+    fail(Status::out_of_range, "levels [0, " + std::to_string(finest()) +
+                                   ") prolong to the finest level, not level " +
+                                   std::to_string(level));
+  if (scene_.progressive.prolongation == ProxyProlongation::direct) return {direct_operator(level)};
+  std::vector<std::shared_ptr<const ShellProlongation>> chain;
+  for (int k = level; k < finest(); ++k) chain.push_back(next_operator(k));
+  return chain;
+}
+
+Positions ProgressiveSimulation::prolong_to_finest(int level, const Positions& x) const {
+  Positions state = x;
+  for (const auto& op : to_finest(level)) state = (*op)(state);
+  return state;
+}
+
+Scene ProgressiveSimulation::level_scene(int level) const {
+  Scene scene = scene_;
+  if (level == finest()) return scene;
+  // A preview step: a few Newton iterations to the preview tolerance (PSQ §4.5, Algorithm 1).
+  const ProgressiveSettings& p = scene.progressive;
+  scene.solver.max_iterations = std::min(scene.solver.max_iterations, p.preview_iterations);
+  if (p.preview_tolerance > 0.0) scene.solver.tolerance = p.preview_tolerance;
+  return scene;
+}
+
+std::unique_ptr<DirectSimulation> ProgressiveSimulation::make_level(int level, const Vector* start,
+                                                                    int steps_taken) const {
+  SimulationLevel spec{hierarchy_, level, {}};
+  if (level < finest()) spec.to_finest = to_finest(level);
+  return std::make_unique<DirectSimulation>(level_scene(level), std::move(spec), start,
+                                            steps_taken);
+}
+
+void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
+  LevelRecord& r = records_[level_];
+  (new_step ? r.steps : r.settles) += 1;
+  r.newton_iterations += step.newton.iterations;
+  r.converged_solves += step.newton.stop == NewtonStop::converged;
+  r.solve_seconds += step.seconds;
+  r.energy = step.newton.energy;
+  r.gradient_norm = step.newton.gradient_norm;
+  r.simulated_time = step.time;
+  // The Newton test passed within the step: the state is an equilibrium of the level's energy
+  // at these loads (PSQ Algorithm 1 flags it when the first test passes).
+  r.equilibrium = step.newton.stop == NewtonStop::converged;
+}
+
+StepRecord ProgressiveSimulation::step() {
+  StepRecord step = sim_->step();
+  record(step, true);
+  return step;
+}
+
+StepRecord ProgressiveSimulation::settle() {
+  StepRecord step = sim_->settle();
+  record(step, false);
+  return step;
+}
+
+bool ProgressiveSimulation::settle_to_equilibrium(int max_solves) {
+  for (int k = 0; k < max_solves; ++k)
+    if (settle(), records_[level_].equilibrium) return true;
+  return false;
+}
+
+void ProgressiveSimulation::refine() {
+  if (level_ >= finest())
+    fail(Status::out_of_range, "already at the finest level " + std::to_string(finest()) +
+                                   "; there is nothing to refine");
+  Timer timer;
+  const Vector start = as_dofs((*next_operator(level_))(sim_->positions()));  // PSQ eq. 7
+  if (!start.allFinite())
+    fail(Status::numerical_failure,
+         "refining level " + std::to_string(level_) + ": the prolonged state is not finite");
+  std::unique_ptr<DirectSimulation> next;
+  try {
+    next = make_level(level_ + 1, &start, sim_->steps_taken());
+  } catch (const Error& e) {
+    if (e.status() != Status::intersecting) throw;
+    fail(Status::intersecting,
+         "refining level " + std::to_string(level_) + ": " + e.what() +
+             " (safe refinement with contact, PSQ §4.4, is not implemented yet)");
+  }
+  if (!std::isfinite(next->problem().value(start)))
+    fail(Status::unsupported, "refining level " + std::to_string(level_) +
+                                  ": the prolonged state has infinite energy (a strain limit is "
+                                  "exceeded); safe refinement, PSQ §4.4, is not implemented yet");
+  records_[level_].positions = sim_->positions();
+  sim_ = std::move(next);
+  ++level_;
+  records_[level_].refine_seconds += timer.seconds();
+}
+
+Positions ProgressiveSimulation::positions(int level) const {
+  if (level < 0 || level > finest())
+    fail(Status::out_of_range, "level " + std::to_string(level) + " does not exist (levels 0 to " +
+                                   std::to_string(finest()) + ")");
+  if (level == level_) return sim_->positions();
+  if (level < level_) return records_[level].positions;
+  Positions x = sim_->positions();
+  if (level == finest()) return prolong_to_finest(level_, x);       // the proxy's own map
+  for (int k = level_; k < level; ++k) x = (*next_operator(k))(x);  // PSQ eq. 7 in turn
+  return x;
+}
+
+void ProgressiveSimulation::update_scene(Scene scene) {
+  validate_scene(scene);
+  if (!same_levels(scene.progressive, scene_.progressive))
+    fail(Status::invalid_argument,
+         "update_scene: the progressive levels define the hierarchy and cannot change");
+  std::swap(scene_, scene);
+  try {
+    sim_->update_scene(level_scene(level_));
+  } catch (const Error&) {
+    std::swap(scene_, scene);
+    throw;
+  }
+}
+
+}  // namespace progsim

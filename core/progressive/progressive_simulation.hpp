@@ -1,0 +1,110 @@
+#pragma once
+/// @file Progressive Shell Quasistatics (PSQ, Zhang et al. 2023, §3 and Algorithm 1): a coarse
+/// preview of a scene's equilibria on level l with the proxy energy, then refinement level by
+/// level to the finest mesh, solved there to convergence with the full energy.
+#include <memory>
+#include <vector>
+
+#include "hierarchy/mesh_hierarchy.hpp"
+#include "hierarchy/shell_prolongation.hpp"
+#include "scene/scene.hpp"
+#include "sim/direct_simulation.hpp"
+
+namespace progsim {
+
+/// What happened on one level: its work, and its state when it was left.
+struct LevelRecord {
+  int steps = 0;                ///< preview (or finest) steps taken on the level
+  int settles = 0;              ///< solves at a fixed time (after refinement, to equilibrium)
+  int newton_iterations = 0;    ///< over steps and settles
+  int converged_solves = 0;     ///< steps and settles whose Newton solve met the tolerance
+  double solve_seconds = 0.0;   ///< wall time of the level's steps and settles
+  double refine_seconds = 0.0;  ///< wall time to build the level's start from the coarser one
+  double energy = 0.0;          ///< E at the level's current or last state (J)
+  double gradient_norm = 0.0;   ///< ‖∇E‖ over free DOFs there
+  double simulated_time = 0.0;  ///< scene time of the last solve (s)
+  bool equilibrium = false;     ///< the last solve needed no Newton step (PSQ Algorithm 1 line 21)
+  Positions positions;          ///< the state when the level was left (empty while current)
+};
+
+/// The progressive driver. Level 0 is the coarsest; finest() is the scene's mesh. Quasistatic
+/// scenes only (PSQ); dynamic scenes (Progressive Dynamics) are refused on coarse levels.
+class ProgressiveSimulation {
+ public:
+  /// Builds the scene's hierarchy from `scene.progressive` (its handles kept as vertex groups),
+  /// or uses `hierarchy`, which must have been built from the scene's merged bodies with its
+  /// handles as vertex groups. Starts at level 0 at rest. Throws Error(invalid_scene /
+  /// invalid_argument / unsupported) on bad input, Error(cancelled) if `progress` says stop.
+  explicit ProgressiveSimulation(Scene scene,
+                                 std::shared_ptr<const MeshHierarchy> hierarchy = nullptr,
+                                 HierarchyProgress progress = nullptr, void* user = nullptr);
+  ~ProgressiveSimulation();
+  ProgressiveSimulation(const ProgressiveSimulation&) = delete;
+  ProgressiveSimulation& operator=(const ProgressiveSimulation&) = delete;
+
+  /// One step of the load script: a preview step with at most `preview_iterations` Newton
+  /// iterations below the finest level (PSQ §4.5), a full step at the finest level.
+  StepRecord step();
+  /// Solves again at the current time (no load change): after a refinement or an edit.
+  /// Below the finest level with the preview's iteration cap, at the finest to convergence.
+  StepRecord settle();
+  /// Settles until the current level is at equilibrium (PSQ Algorithm 1: a solve that needs no
+  /// Newton step) or `max_solves` solves were made; returns whether equilibrium was reached.
+  bool settle_to_equilibrium(int max_solves);
+  /// Refines the current level l into l+1 with the hierarchy's P^l_{l+1} (PSQ eq. 7) and
+  /// continues there at the same scene time. Throws Error(out_of_range) at the finest level;
+  /// Error(intersecting) when the prolonged state intersects or breaks a strain limit (safe
+  /// refinement, PSQ §4.4, is not implemented yet). On Error nothing changed.
+  void refine();
+
+  int level() const { return level_; }
+  int finest() const { return hierarchy_->finest(); }
+  const MeshHierarchy& hierarchy() const { return *hierarchy_; }
+  std::shared_ptr<const MeshHierarchy> shared_hierarchy() const { return hierarchy_; }
+  /// The simulation of the current level.
+  const DirectSimulation& current() const { return *sim_; }
+  const std::vector<LevelRecord>& records() const { return records_; }
+  const Scene& scene() const { return scene_; }
+  /// Positions of level `level` (|V_level| × 3): the live state of the current level, the
+  /// state a coarser level was left in, or the current state prolonged to a finer level (with
+  /// P^l to the finest level, PSQ eq. 9, and P^k_{k+1} in turn to intermediate ones).
+  /// Throws Error(out_of_range) for a level that does not exist.
+  Positions positions(int level) const;
+  /// Replaces the scene between steps (materials, loads, handle motions, effects, solver
+  /// settings), keeping the level, state and time. The meshes and the handles' vertex sets
+  /// must stay (they define the hierarchy). On Error nothing changed.
+  void update_scene(Scene scene);
+  /// The operators that take level `level` (< finest) to the finest mesh, applied in turn: the
+  /// proxy energy's prolongation (scene.progressive.prolongation). Built once.
+  std::vector<std::shared_ptr<const ShellProlongation>> to_finest(int level) const;
+  /// A state of level `level` prolonged to the finest mesh with to_finest(level).
+  Positions prolong_to_finest(int level, const Positions& x) const;
+
+ private:
+  /// The scene a level is solved with: the preview iteration cap below the finest level.
+  Scene level_scene(int level) const;
+  /// A new simulation of `level` from `start` after `steps_taken` steps.
+  std::unique_ptr<DirectSimulation> make_level(int level, const Vector* start,
+                                               int steps_taken) const;
+  /// P_{level+1}^level (PSQ eq. 7) and P^level (eq. 9), built once.
+  const std::shared_ptr<const ShellProlongation>& next_operator(int level) const;
+  const std::shared_ptr<const ShellProlongation>& direct_operator(int level) const;
+  /// Adds a solve's outcome to the current level's record.
+  void record(const StepRecord& step, bool new_step);
+
+  Scene scene_;
+  std::shared_ptr<const MeshHierarchy> hierarchy_;
+  mutable std::vector<std::shared_ptr<const ShellProlongation>> to_finest_;  // lazily built
+  mutable std::vector<std::shared_ptr<const ShellProlongation>> to_next_;    // lazily built
+  std::unique_ptr<DirectSimulation> sim_;
+  std::vector<LevelRecord> records_;
+  int level_ = 0;
+};
+
+/// The scene's hierarchy as its `progressive` settings ask: the merged bodies decimated to the
+/// requested coarse level sizes with the handles as vertex groups (a single level when the
+/// settings ask for none).
+MeshHierarchy build_scene_hierarchy(const Scene& scene, HierarchyProgress progress = nullptr,
+                                    void* user = nullptr);
+
+}  // namespace progsim

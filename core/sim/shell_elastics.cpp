@@ -1,0 +1,42 @@
+#include "sim/shell_elastics.hpp"
+
+#include "energy/gravity.hpp"
+#include "energy/hinge_bending.hpp"
+#include "energy/neo_hookean_membrane.hpp"
+#include "energy/pressure.hpp"
+
+namespace progsim {
+namespace {
+
+/// Faces of body b, renumbered into the merged model.
+Faces body_faces(const ShellModel& model, int b) {
+  return model.rest.faces.middleRows(model.face_offset[b],
+                                     model.face_offset[b + 1] - model.face_offset[b]);
+}
+
+}  // namespace
+
+ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, bool with_gravity) {
+  ShellElastics out;
+  const EffectSet& fx = scene.effects;
+  const Positions& rest = model.rest.vertices;
+  if (fx.has(Effect::membrane))
+    out.terms.push_back(
+        std::make_unique<NeoHookeanMembrane>(rest, model.rest.faces, model.face_materials));
+  if (fx.has(Effect::bending))
+    out.terms.push_back(std::make_unique<HingeBending>(
+        rest, model.rest.faces, model.topology.hinges, model.face_materials));
+  if (with_gravity && fx.has(Effect::gravity))
+    out.terms.push_back(std::make_unique<Gravity>(model.vertex_masses, scene.gravity));
+  if (fx.has(Effect::pressure)) {
+    for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
+      if (scene.bodies[b].pressure == 0.0) continue;
+      auto term = std::make_unique<Pressure>(rest, body_faces(model, b), 0.0);
+      out.pressures.emplace_back(term.get(), b);
+      out.terms.push_back(std::move(term));
+    }
+  }
+  return out;
+}
+
+}  // namespace progsim

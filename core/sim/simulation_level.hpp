@@ -1,0 +1,39 @@
+#pragma once
+/// @file Which level of a mesh hierarchy a simulation solves (PSQ §3.1: M_l), and that level
+/// as a shell model of the scene's bodies.
+#include <memory>
+#include <vector>
+
+#include "hierarchy/mesh_hierarchy.hpp"
+#include "hierarchy/shell_prolongation.hpp"
+#include "sim/shell_model.hpp"
+
+namespace progsim {
+
+/// A level of a hierarchy built from the scene's merged bodies. The default (no hierarchy) is
+/// the scene's own mesh.
+struct SimulationLevel {
+  std::shared_ptr<const MeshHierarchy> hierarchy;  ///< null: the scene's own mesh
+  int level = 0;                                   ///< 0 = coarsest … hierarchy->finest()
+  /// The prolongation to the finest level, as operators applied in turn (P^l alone, PSQ eq. 9,
+  /// or P_{l+1}^l, …, P_L^{L−1}). Set: the shell energy is the proxy Ψ_L(P(x)) (PSQ eq. 2,
+  /// progressive preview). Empty: the level's own shell energy (a direct solve at this level).
+  std::vector<std::shared_ptr<const ShellProlongation>> to_finest;
+
+  bool is_finest() const { return !hierarchy || level == hierarchy->finest(); }
+};
+
+/// Level `level` of `hierarchy` (built from `finest.rest`) as a model of the same bodies: the
+/// level's rest mesh, its faces ordered by body with each body's material, and the level's
+/// lumped masses and topology. Bodies map to levels by vertex id (decimation never merges two
+/// connected components). Throws Error(invalid_argument) if the hierarchy's finest level is not
+/// `finest.rest`.
+ShellModel level_shell_model(const ShellModel& finest, const MeshHierarchy& hierarchy, int level);
+
+/// Throws Error(invalid_argument) unless `hierarchy`'s finest level has exactly the vertices and
+/// faces of `finest` and its vertex groups are exactly `vertex_handle` (the scene's handles:
+/// coarse levels keep handle vertices only where the hierarchy was built with them).
+void check_hierarchy_matches(const MeshHierarchy& hierarchy, const TriangleMesh& finest,
+                             const std::vector<int>& vertex_handle);
+
+}  // namespace progsim

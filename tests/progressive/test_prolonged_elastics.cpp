@@ -1,0 +1,107 @@
+// The proxy shell energy Ψ_L(P^l(x)) of PSQ eq. 2: its gradient against central finite
+// differences of its value, its value at rest against the finest level's own, and its Hessian
+// against the level's own shell Hessian (the preconditioner of PSQ Algorithm 1).
+#include <gtest/gtest.h>
+
+#include "common/error.hpp"
+#include "energy/gravity.hpp"
+#include "energy/hinge_bending.hpp"
+#include "energy/lumped_mass.hpp"
+#include "energy/neo_hookean_membrane.hpp"
+#include "hierarchy/hierarchy_test_meshes.hpp"
+#include "hierarchy/level_prolongation.hpp"
+#include "hierarchy/mesh_hierarchy.hpp"
+#include "mesh/mesh_topology.hpp"
+#include "progressive/prolonged_elastics.hpp"
+#include "support/energy_checks.hpp"
+
+using namespace progsim;
+using namespace progsim::test_support;
+
+namespace {
+
+/// Membrane, bending and gravity on `mesh` with per-face materials from `seed`.
+std::vector<std::unique_ptr<EnergyTerm>> shell_terms(const TriangleMesh& mesh, bool gravity) {
+  const std::vector<ShellMaterial> materials = varied_materials(mesh.num_faces(), 7);
+  std::vector<std::unique_ptr<EnergyTerm>> terms;
+  terms.push_back(std::make_unique<NeoHookeanMembrane>(mesh.vertices, mesh.faces, materials));
+  terms.push_back(std::make_unique<HingeBending>(
+      mesh.vertices, mesh.faces, build_topology(mesh.faces, mesh.num_vertices()).hinges,
+      materials));
+  if (gravity)
+    terms.push_back(std::make_unique<Gravity>(
+        lumped_vertex_masses(mesh.vertices, mesh.faces, materials), Vec3(0.3, -9.81, 0.5)));
+  return terms;
+}
+
+struct ProxyCase {
+  MeshHierarchy hierarchy;
+  std::shared_ptr<const ShellProlongation> to_finest;
+  std::unique_ptr<ProlongedElastics> proxy;
+
+  ProxyCase(const TriangleMesh& mesh, int coarse_vertices) {
+    HierarchyOptions options;
+    options.coarse_vertex_counts = {coarse_vertices};
+    hierarchy = build_hierarchy(mesh, options);
+    to_finest = std::make_shared<const ShellProlongation>(direct_prolongation(hierarchy, 0));
+    proxy = std::make_unique<ProlongedElastics>(to_finest, shell_terms(mesh, true),
+                                                shell_terms(coarse(), false));
+  }
+  const TriangleMesh& coarse() const { return hierarchy.levels[0].rest; }
+};
+
+}  // namespace
+
+TEST(ProlongedElastics, GradientMatchesFiniteDifferencesOnACurvedShell) {
+  const ProxyCase c(dome(12), 40);
+  for (unsigned seed : {1u, 2u}) {
+    const Vector x = perturbed(c.coarse().vertices, 0.03, seed);
+    const Vector analytic = analytic_gradient(*c.proxy, x);
+    const Vector numeric = finite_difference_gradient(*c.proxy, x, 1e-6);
+    EXPECT_LT(relative_error(analytic, numeric, 1e-3), 1e-5) << "seed " << seed;
+  }
+}
+
+TEST(ProlongedElastics, ValueAtRestIsTheFinestValueAtRest) {
+  const TriangleMesh mesh = dome(12);
+  const ProxyCase c(mesh, 40);
+  double finest = 0.0;
+  for (const auto& term : shell_terms(mesh, true)) finest += term->value(as_dofs(mesh.vertices));
+  const double proxy = c.proxy->value(as_dofs(c.coarse().vertices));
+  EXPECT_NEAR(proxy, finest, 1e-10 * std::abs(finest));
+  EXPECT_LT((c.proxy->last_prolonged() - mesh.vertices).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(ProlongedElastics, OnAFlatSheetTheGradientIsTheRestrictedFineGradient) {
+  // A flat rest sheet has no offsets (a ≡ 0), so J = U and the gradient is Uᵀ∇Ψ_L(Ux).
+  const TriangleMesh mesh = make_grid(1.0, 1.0, 14, 14);
+  const ProxyCase c(mesh, 50);
+  const Vector x = perturbed(c.coarse().vertices, 0.05, 3);
+  const Positions fine = c.to_finest->intrinsic() * as_positions(x);
+  Vector fine_gradient = Vector::Zero(3 * mesh.num_vertices());
+  for (const auto& term : shell_terms(mesh, true)) term->add_gradient(as_dofs(fine), fine_gradient);
+  const Positions restricted = c.to_finest->restrict_gradient(as_positions(fine_gradient));
+  EXPECT_LT(relative_error(analytic_gradient(*c.proxy, x), as_dofs(restricted), 1e-3), 1e-10);
+}
+
+TEST(ProlongedElastics, HessianIsTheLevelsOwnShellHessian) {
+  const ProxyCase c(dome(10), 30);
+  const Vector x = perturbed(c.coarse().vertices, 0.02, 4);
+  Eigen::MatrixXd own = Eigen::MatrixXd::Zero(x.size(), x.size());
+  for (const auto& term : shell_terms(c.coarse(), false)) own += assembled_hessian(*term, x, true);
+  EXPECT_LT(relative_error(assembled_hessian(*c.proxy, x, true), own, 1e-6), 1e-12);
+}
+
+TEST(ProlongedElastics, CountsFinestEvaluationsAndRejectsWrongSizes) {
+  const ProxyCase c(dome(8), 20);
+  const Vector x = as_dofs(c.coarse().vertices);
+  Vector g = Vector::Zero(x.size());
+  c.proxy->value(x);
+  c.proxy->add_gradient(x, g);
+  const std::vector<TermStats> stats = c.proxy->finest_term_stats();
+  ASSERT_EQ(stats.size(), 3u);
+  EXPECT_EQ(stats[0].name, "membrane@finest");
+  EXPECT_EQ(stats[0].value_evaluations, 1);
+  EXPECT_EQ(stats[0].gradient_evaluations, 1);
+  EXPECT_THROW(c.proxy->value(Vector::Zero(x.size() + 3)), Error);
+}
