@@ -34,6 +34,7 @@ CC=clang-14 CXX=clang++-14 scripts/build.sh asan -DPROGSIM_SANITIZE=ON -DPROGSIM
 # above. Under the sanitizers the same contact code runs through its unit tests (barrier,
 # friction, CCD, broad phase, distances) and the short scenes (incline, strain limit, bad input).
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  LSAN_OPTIONS="suppressions=$PWD/tests/lsan_suppressions.txt" \
   ctest --test-dir build/asan --output-on-failure -j "$(nproc)" \
   -E '^(ContactScenes[.](ClothDrapes|FastImpact|ClothTwisted|SpinningSphere)|BundledScenes[.])'
 

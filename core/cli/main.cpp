@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "cli/accuracy_command.hpp"
 #include "cli/hierarchy_command.hpp"
 #include "cli/progress_bar.hpp"
 #include "common/build_info.hpp"
@@ -79,6 +80,8 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--quiet", run_options.quiet, "no progress bar");
   cli::HierarchyCommand hierarchy_options;
   CLI::App* hierarchy_cmd = cli::add_hierarchy_command(app, hierarchy_options);
+  cli::AccuracyCommand accuracy_options;
+  CLI::App* accuracy_cmd = cli::add_accuracy_command(app, accuracy_options);
   app.add_subcommand("info", "print version and build options")->callback([] {
     std::printf("%s", build_info().c_str());
   });
@@ -86,9 +89,11 @@ int main(int argc, char** argv) {
     std::printf("%s", parameter_table_markdown().c_str());
   });
   CLI11_PARSE(app, argc, argv);
-  if (!run_cmd->parsed() && !hierarchy_cmd->parsed()) return 0;
   try {
-    return run_cmd->parsed() ? run(run_options) : cli::run_hierarchy_command(hierarchy_options);
+    if (run_cmd->parsed()) return run(run_options);
+    if (hierarchy_cmd->parsed()) return cli::run_hierarchy_command(hierarchy_options);
+    if (accuracy_cmd->parsed()) return cli::run_accuracy_command(accuracy_options);
+    return 0;
   } catch (const Error& e) {
     std::fprintf(stderr, "progsim: error (%s): %s\n", status_name(e.status()), e.what());
     return 2;

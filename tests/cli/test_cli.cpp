@@ -170,3 +170,32 @@ TEST_F(Cli, HierarchyRejectsBadRequests) {
   }
   EXPECT_NE(run_cli("hierarchy " + mesh + " --levels 30 --ratio 4 --count 2 --out x").exit_code, 0);
 }
+
+TEST_F(Cli, AccuracyWritesTableCsvAndPlots) {
+  const fs::path out = dir_ / "plate";
+  const CommandResult r =
+      run_cli("accuracy " + std::string(PROGSIM_SOURCE_DIR) +
+              "/scenes/psq_plate_buckling.json --out " + out.string() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("| progressive | 0 |"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("coarse preview vs direct finest"), std::string::npos);
+  for (const char* name :
+       {"accuracy.csv", "accuracy.md", "error_vs_time.png", "error_by_level.png"})
+    EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
+  std::ifstream csv(out / "accuracy.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header,
+            "method,level,vertices,seconds,refine_seconds,newton_iterations,error_rms,error_max");
+  int lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, 6);  // 3 levels, progressive and direct
+}
+
+TEST_F(Cli, AccuracyNeedsCoarseLevels) {
+  const CommandResult r =
+      run_cli("accuracy " + scene(kGrid).string() + " --out " + (dir_ / "x").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("needs coarse levels"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "x"));
+}

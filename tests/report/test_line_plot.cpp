@@ -21,13 +21,6 @@
 using namespace progsim;
 namespace fs = std::filesystem;
 
-/// LeakSanitizer hook: fontconfig keeps its configuration (loaded when cairo first draws text)
-/// for the life of the process; only FcFini would free it, and fontconfig is not linked
-/// directly. Matched by library: its frames have no frame pointers, so stacks end there.
-extern "C" const char* __lsan_default_suppressions() {
-  return "leak:libfontconfig.so\n";
-}
-
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -1,0 +1,61 @@
+#pragma once
+/// @file What accuracy costs in time: a scene solved progressively (PSQ) and directly at every
+/// level of its hierarchy, each result compared with the converged finest solution.
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace progsim {
+
+/// One result: a level's state, the wall time it took and its error.
+struct AccuracyRow {
+  enum class Method { progressive, direct };
+  Method method = Method::progressive;
+  int level = 0;     ///< 0 = coarsest
+  int vertices = 0;  ///< of the level's mesh
+  /// Progressive: wall time from the start (after the hierarchy is built) until this level's
+  /// equilibrium, the coarser levels and refinements included. Direct: the solve of this level
+  /// alone over the whole load script.
+  double seconds = 0.0;
+  double refine_seconds = 0.0;  ///< progressive: time spent building this level's start
+  int newton_iterations = 0;    ///< on this level (progressive) or in the solve (direct)
+  /// Distance of the state, prolonged to the finest mesh, to the converged finest progressive
+  /// solution: root mean square and maximum over the finest vertices, divided by the finest
+  /// rest shape's bounding-box diagonal.
+  double error_rms = 0.0, error_max = 0.0;
+};
+
+/// All rows of one scene (progressive levels first, then the direct solves by level).
+struct AccuracyReport {
+  std::string scene;
+  double hierarchy_seconds = 0.0;  ///< building the mesh hierarchy (not in any row's time)
+  double diagonal = 0.0;           ///< finest rest bounding-box diagonal (m)
+  std::vector<AccuracyRow> rows;
+};
+
+/// Progress of a long run: the phase ("progressive level 1", "direct level 0", …) and the
+/// fraction of the whole run done. Returning false cancels (Error(cancelled)).
+using AccuracyProgress = bool (*)(void* user, double fraction, const char* phase);
+
+/// Runs the scene progressively through its load script (preview on level 0 to equilibrium,
+/// refinement and equilibrium on each finer level, the finest to convergence) and directly on
+/// every level with the same solver settings. The scene must ask for coarse levels
+/// (Error(invalid_scene) otherwise) and be quasistatic (Error(unsupported)). Settling stops
+/// after `max_settles` solves per level.
+AccuracyReport run_accuracy(const Scene& scene, int max_settles = 500,
+                            AccuracyProgress progress = nullptr, void* user = nullptr);
+
+/// Writes `accuracy.csv`, `accuracy.md` (table and speed-ups), `error_vs_time.png` and
+/// `error_by_level.png` into `dir` (created). Throws Error(io_error) naming a file that cannot
+/// be written.
+void write_accuracy_report(const AccuracyReport& report, const std::string& dir);
+
+/// The CSV text: a header line, then one line per row.
+std::string accuracy_csv(const AccuracyReport& report);
+
+/// The Markdown text: a table of every row and the measured ratios (coarse preview and full
+/// progressive pipeline against the direct finest solve).
+std::string accuracy_markdown(const AccuracyReport& report);
+
+}  // namespace progsim

@@ -1,0 +1,97 @@
+// The accuracy-vs-time report: progressive and direct rows for every level, errors against the
+// converged finest solution, CSV, Markdown and PNG files, and its refusals.
+#include <cairo.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "common/error.hpp"
+#include "progressive/accuracy.hpp"
+#include "progressive/progressive_test_scenes.hpp"
+
+using namespace progsim;
+using namespace progsim::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+Scene small_plate() {
+  Scene scene = buckling_plate(12, 1e-4, 4);  // 169 vertices
+  scene.progressive.level_vertices = {25, 60};
+  return scene;
+}
+
+const AccuracyReport& plate_report() {
+  static const AccuracyReport report = run_accuracy(small_plate());
+  return report;
+}
+
+}  // namespace
+
+TEST(Accuracy, OneRowPerLevelAndMethodWithErrorsAgainstTheConvergedFinest) {
+  const AccuracyReport& r = plate_report();
+  ASSERT_EQ(r.rows.size(), 6u);
+  const std::vector<int> sizes = {25, 60, 169};
+  for (int k = 0; k < 6; ++k) {
+    const AccuracyRow& row = r.rows[k];
+    EXPECT_EQ(row.method, k < 3 ? AccuracyRow::Method::progressive : AccuracyRow::Method::direct);
+    EXPECT_EQ(row.level, k % 3);
+    EXPECT_EQ(row.vertices, sizes[k % 3]);
+    EXPECT_GT(row.seconds, 0.0);
+    EXPECT_GT(row.newton_iterations, 0);
+    EXPECT_TRUE(std::isfinite(row.error_rms) && std::isfinite(row.error_max));
+    EXPECT_LE(row.error_rms, row.error_max);
+  }
+  EXPECT_EQ(r.rows[2].error_max, 0.0);              // the reference itself
+  EXPECT_GT(r.rows[0].error_max, 0.0);              // a coarse preview is not exact
+  EXPECT_LT(r.rows[0].seconds, r.rows[1].seconds);  // progressive times are cumulative
+  EXPECT_LT(r.rows[1].seconds, r.rows[2].seconds);
+  EXPECT_EQ(r.rows[0].refine_seconds, 0.0);
+  EXPECT_GT(r.rows[1].refine_seconds, 0.0);
+  EXPECT_LT(r.rows[5].error_max, 1e-3);           // direct finest: the same buckled branch
+  EXPECT_NEAR(r.diagonal, std::sqrt(2.0), 1e-3);  // the plate's bump adds 0.1 mm of height
+}
+
+TEST(Accuracy, WritesCsvMarkdownAndPngPlots) {
+  const fs::path dir = fs::temp_directory_path() / "progsim_accuracy_report";
+  fs::remove_all(dir);
+  write_accuracy_report(plate_report(), dir.string());
+  const std::string csv = accuracy_csv(plate_report());
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 7);
+  EXPECT_EQ(csv.rfind("direct,2,169,", std::string::npos) != std::string::npos, true);
+  const std::string md = accuracy_markdown(plate_report());
+  EXPECT_NE(md.find("| method | level | vertices |"), std::string::npos);
+  EXPECT_NE(md.find("x faster"), std::string::npos);
+  for (const char* png : {"error_vs_time.png", "error_by_level.png"}) {
+    cairo_surface_t* image = cairo_image_surface_create_from_png((dir / png).c_str());
+    EXPECT_EQ(cairo_surface_status(image), CAIRO_STATUS_SUCCESS) << png;
+    EXPECT_EQ(cairo_image_surface_get_width(image), 900) << png;
+    cairo_surface_destroy(image);
+  }
+  EXPECT_TRUE(fs::is_regular_file(dir / "accuracy.csv"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "accuracy.md"));
+  fs::remove_all(dir);
+}
+
+TEST(Accuracy, RefusesScenesWithoutLevelsAndStopsWhenCancelled) {
+  Scene direct_only = small_plate();
+  direct_only.progressive = {};
+  try {
+    run_accuracy(direct_only);
+    FAIL() << "a scene without coarse levels was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::invalid_scene);
+  }
+  int calls = 0;
+  auto stop_at_direct = [](void* user, double, const char* phase) {
+    ++*static_cast<int*>(user);
+    return std::string(phase).rfind("direct", 0) != 0;
+  };
+  try {
+    run_accuracy(small_plate(), 500, stop_at_direct, &calls);
+    FAIL() << "cancelling did not stop the run";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::cancelled);
+  }
+  EXPECT_EQ(calls, 5);  // hierarchy, 3 progressive levels, the first direct level
+}
