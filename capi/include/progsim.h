@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 3
+#define PS_VERSION_MINOR 4
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -133,7 +133,12 @@ typedef struct ps_hierarchy_def {
   ps_progress_fn progress;
   /** Passed back to progress unchanged. Default NULL. */
   void* progress_user_data;
-  int32_t internal_cookie; /**< set by ps_hierarchy_def_init(); do not touch */
+  /** Vertices a simulation will hold (ps_sim_def.pinned_vertices): they are kept on every
+   *  level at their rest positions. A multi-level simulation's pinned vertices must be exactly
+   *  these. Nullable; borrowed during the create call only. */
+  const int32_t* pinned_vertices;
+  size_t num_pinned_vertices; /**< entries in pinned_vertices; default 0 */
+  int32_t internal_cookie;    /**< set by ps_hierarchy_def_init(); do not touch */
 } ps_hierarchy_def;
 
 /** Fills def with defaults (single level). def must not be NULL. */
@@ -277,8 +282,9 @@ PS_API void ps_sim_def_init(ps_sim_def* def);
  * @param out receives the simulation; caller owns, destroy with ps_sim_destroy().
  * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_INVALID_ARGUMENT (a parameter NaN or out of
  * its range, naming it), PS_ERROR_INVALID_SCENE (a pinned vertex out of range),
- * PS_ERROR_NULL_ARGUMENT. Simulations of multi-level hierarchies (progressive preview and
- * refinement) are not available in this version: PS_ERROR_UNSUPPORTED.
+ * PS_ERROR_NULL_ARGUMENT. On a multi-level hierarchy the simulation is progressive (PSQ):
+ * quasistatic only (PS_MODE_DYNAMIC: PS_ERROR_UNSUPPORTED), and its pinned vertices must be
+ * the hierarchy's (ps_hierarchy_def.pinned_vertices; otherwise PS_ERROR_INVALID_ARGUMENT).
  */
 PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* def, ps_sim** out);
 
@@ -382,10 +388,25 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
 PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps);
 
 /**
- * Refines the current level l to l + 1 (safe refinement), so that later steps run on the
- * finer level. Errors: PS_ERROR_OUT_OF_RANGE at the finest level (the state is unchanged).
+ * Refines the current level l to l + 1 with the hierarchy's prolongation P^l_{l+1} (PSQ eq. 7)
+ * at the same time and loads, so that later steps run on the finer level. Below the finest
+ * level steps are previews: the proxy energy (the finest level's elastics through the
+ * prolongation, PSQ eq. 2) with few Newton iterations each. Progress phase "refine".
+ * Errors (the state is unchanged): PS_ERROR_OUT_OF_RANGE at the finest level;
+ * PS_ERROR_INTERSECTING when the prolonged state intersects (contact) and
+ * PS_ERROR_UNSUPPORTED when it breaks a strain limit: safe refinement (PSQ §4.4) is not in
+ * this version.
  */
 PS_API int32_t ps_sim_refine(ps_sim* sim);
+
+/**
+ * Solves again at the current time and loads until the level is at equilibrium (a Newton
+ * solve meets the tolerance) or `max_solves` solves were made: after a refinement or a
+ * parameter change. *equilibrium (nullable) receives 1 if reached, else 0. Progress phase
+ * "settle". Errors: PS_ERROR_INVALID_ARGUMENT (max_solves < 1), PS_ERROR_CANCELLED,
+ * PS_ERROR_NUMERICAL.
+ */
+PS_API int32_t ps_sim_settle(ps_sim* sim, int32_t max_solves, int32_t* equilibrium);
 
 /** The current level into *out (0 = coarsest). */
 PS_API int32_t ps_sim_current_level(const ps_sim* sim, int32_t* out);
@@ -403,24 +424,82 @@ PS_API int32_t ps_sim_get_positions(const ps_sim* sim, int32_t level, double* ou
  *  to `path`; the extension picks the format (.obj, .off, .ply). */
 PS_API int32_t ps_sim_write_mesh(const ps_sim* sim, int32_t level, const char* path);
 
-/** Per-level statistics, accumulated over every step taken at that level. */
+/** Per-level statistics, accumulated over every step and settle at that level. */
 typedef struct ps_level_stats {
   int32_t level;             /**< which level */
   int32_t steps;             /**< steps taken at this level */
-  int32_t newton_iterations; /**< total Newton iterations */
-  int32_t converged_steps;   /**< steps whose Newton solve met the tolerance */
-  double seconds;            /**< wall time stepping at this level, s */
+  int32_t newton_iterations; /**< total Newton iterations (steps and settles) */
+  int32_t converged_steps;   /**< steps and settles whose Newton solve met the tolerance */
+  double seconds;            /**< wall time solving at this level, s */
   double energy;             /**< incremental potential after the last step, J */
   double gradient_norm;      /**< ‖∇E‖ over free DOFs after the last step, N */
   double simulated_time;     /**< simulated time reached, s */
-  /** RMS / max vertex distance to the converged finest solution over the bounding-box
-   *  diagonal; NaN until measured (progressive accuracy reports fill them). */
+  /** RMS / max vertex distance of the level's state (prolonged to the finest mesh) to the
+   *  converged finest solution, over the finest bounding-box diagonal; NaN until the finest
+   *  level is at equilibrium (ps_sim_settle() there). */
   double error_rms;
   double error_max;
+  int32_t settles;       /**< solves at a fixed time (ps_sim_settle()) */
+  int32_t equilibrium;   /**< 1 if the last solve met the tolerance */
+  double refine_seconds; /**< wall time refining the coarser level into this one, s */
 } ps_level_stats;
 
 /** Statistics of `level` into *out. Levels not visited yet report zeros (NaN errors). */
 PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level_stats* out);
+
+/* ------------------------------------------------------- accuracy vs time -------------- */
+
+/** What accuracy costs in time on one scene: progressive and direct results per level. */
+typedef struct ps_accuracy ps_accuracy;
+
+/** How a row's result was computed. */
+typedef enum ps_method {
+  PS_METHOD_PROGRESSIVE = 0, /**< preview, refinement level by level (PSQ) */
+  PS_METHOD_DIRECT = 1,      /**< the level solved on its own with the same solver */
+  PS_METHOD_FORCE32 = 0x7fffffff
+} ps_method;
+
+/** One level's result, as `progsim accuracy` writes it to accuracy.csv. */
+typedef struct ps_accuracy_row {
+  ps_method method;
+  int32_t level;             /**< 0 = coarsest */
+  int32_t vertices;          /**< of the level's mesh */
+  int32_t newton_iterations; /**< on the level */
+  /** s: progressive, from the start until this level's equilibrium (coarser levels and
+   *  refinements included); direct, the level's own solve over the load script. */
+  double seconds;
+  double refine_seconds; /**< s, building the level's start from the coarser level */
+  /** Distance of the level's state, prolonged to the finest mesh, to the converged finest
+   *  progressive result over the finest bounding-box diagonal: RMS and max over vertices. */
+  double error_rms;
+  double error_max;
+} ps_accuracy_row;
+
+/**
+ * Runs the scene file (which needs a "progressive" section with coarse levels) progressively
+ * and directly on every level, as `progsim accuracy` does. Long: progress (nullable) is called
+ * with done/100 and a phase such as "progressive level 1" or "direct level 0".
+ * @param out receives the results; caller owns, destroy with ps_accuracy_destroy().
+ * Errors (message in ps_last_error()): PS_ERROR_IO, PS_ERROR_INVALID_SCENE (no coarse levels
+ * among others), PS_ERROR_UNSUPPORTED (a dynamic scene), PS_ERROR_INTERSECTING,
+ * PS_ERROR_CANCELLED, PS_ERROR_NULL_ARGUMENT.
+ */
+PS_API int32_t ps_accuracy_run_scene_file(const char* path, ps_progress_fn progress,
+                                          void* user_data, ps_accuracy** out);
+
+/** Destroys the results. Nullable (no-op). */
+PS_API void ps_accuracy_destroy(ps_accuracy* accuracy);
+
+/** Number of rows into *out: progressive levels first (coarsest first), then direct ones. */
+PS_API int32_t ps_accuracy_num_rows(const ps_accuracy* accuracy, int32_t* out);
+
+/** Row `index` into *out. Errors: PS_ERROR_OUT_OF_RANGE, PS_ERROR_NULL_ARGUMENT. */
+PS_API int32_t ps_accuracy_get_row(const ps_accuracy* accuracy, int32_t index,
+                                   ps_accuracy_row* out);
+
+/** Writes accuracy.csv, accuracy.md and the two PNG plots into directory `dir` (created).
+ *  Errors: PS_ERROR_IO naming the file, PS_ERROR_NULL_ARGUMENT. */
+PS_API int32_t ps_accuracy_write(const ps_accuracy* accuracy, const char* dir);
 
 #ifdef __cplusplus
 }

@@ -10,36 +10,29 @@
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "hierarchy/shell_prolongation.hpp"
 #include "mesh/triangle_mesh.hpp"
+#include "progressive/progressive_simulation.hpp"
 #include "progsim.h"
 #include "scene/scene.hpp"
-#include "sim/direct_simulation.hpp"
 
 /// A mesh hierarchy (levels[0] the coarsest, the last one the user's mesh) with the direct
 /// shell prolongation of every coarse level to the finest. Immutable once created.
 struct ps_hierarchy {
   explicit ps_hierarchy(progsim::MeshHierarchy built);
-  progsim::MeshHierarchy mesh_hierarchy;
+  explicit ps_hierarchy(std::shared_ptr<const progsim::MeshHierarchy> built);
+  std::shared_ptr<const progsim::MeshHierarchy> shared;  ///< shared with its simulations
+  const progsim::MeshHierarchy& mesh_hierarchy;
   std::vector<progsim::ShellProlongation> to_finest;  ///< P^l, l < finest (PSQ eq. 9)
   mutable std::atomic<int> simulations{0};            ///< live simulations created on it
   mutable std::string last_error;
 };
 
-/// Counters of the steps taken at one level.
-struct LevelRecord {
-  int steps = 0, newton_iterations = 0, converged_steps = 0;
-  double seconds = 0.0, energy = 0.0, gradient_norm = 0.0, simulated_time = 0.0;
-  progsim::Positions positions;  ///< state when the level was left (empty while current)
-};
-
-/// A simulation: the direct solver of the current level and the records of every level.
+/// A simulation: the progressive driver (a direct simulation on a single-level hierarchy).
 struct ps_sim {
   const ps_hierarchy* hierarchy = nullptr;
   std::unique_ptr<ps_hierarchy> owned_hierarchy;  ///< set when created from a scene
-  std::unique_ptr<progsim::DirectSimulation> simulation;
+  std::unique_ptr<progsim::ProgressiveSimulation> simulation;
   progsim::Scene scene;  ///< the scene as last set (parameters are edited here, then applied)
-  int level = 0;
-  std::vector<LevelRecord> records;
-  bool busy = false;  ///< inside a long call (its progress callback may not call back)
+  bool busy = false;     ///< inside a long call (its progress callback may not call back)
   ps_progress_fn progress = nullptr;
   void* progress_user_data = nullptr;
   bool counts_as_user = false;  ///< counted in hierarchy->simulations

@@ -10,8 +10,13 @@
 #include "hierarchy/hierarchy_io.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "mesh/mesh_io.hpp"
+#include "percent_progress.hpp"
 
-ps_hierarchy::ps_hierarchy(progsim::MeshHierarchy built) : mesh_hierarchy(std::move(built)) {
+ps_hierarchy::ps_hierarchy(progsim::MeshHierarchy built)
+    : ps_hierarchy(std::make_shared<const progsim::MeshHierarchy>(std::move(built))) {}
+
+ps_hierarchy::ps_hierarchy(std::shared_ptr<const progsim::MeshHierarchy> built)
+    : shared(std::move(built)), mesh_hierarchy(*shared) {
   to_finest.reserve(mesh_hierarchy.finest());
   for (int l = 0; l < mesh_hierarchy.finest(); ++l)
     to_finest.push_back(progsim::direct_prolongation(mesh_hierarchy, l));
@@ -25,8 +30,25 @@ static_assert(std::is_same_v<Faces::Scalar, int32_t>, "progsim::Faces must hold 
 
 constexpr int32_t kHierarchyCookie = 0x50534844;  // "PSHD"
 
-/// The build options of def (nullable: a single level); rejects defs nobody initialised.
-HierarchyOptions hierarchy_options(const ps_hierarchy_def* def) {
+/// The pinned vertices of def as vertex group 0 of a mesh of `num_vertices` vertices.
+std::vector<int> pinned_groups(const ps_hierarchy_def& def, std::size_t num_vertices) {
+  if (def.num_pinned_vertices == 0) return {};
+  require(def.pinned_vertices, "pinned_vertices (with num_pinned_vertices > 0)");
+  std::vector<int> groups(num_vertices, -1);
+  for (std::size_t k = 0; k < def.num_pinned_vertices; ++k) {
+    const int32_t v = def.pinned_vertices[k];
+    if (v < 0 || static_cast<std::size_t>(v) >= num_vertices)
+      api_fail(PS_ERROR_OUT_OF_RANGE,
+               "pinned_vertices[" + std::to_string(k) + "] = " + std::to_string(v) +
+                   " is not a vertex (the mesh has " + std::to_string(num_vertices) + ")");
+    groups[v] = 0;
+  }
+  return groups;
+}
+
+/// The build options of def (nullable: a single level) for a mesh of `num_vertices` vertices
+/// (0: not known yet, pinned vertices unchecked); rejects defs nobody initialised.
+HierarchyOptions hierarchy_options(const ps_hierarchy_def* def, std::size_t num_vertices) {
   HierarchyOptions options;
   if (!def) return options;
   if (def->internal_cookie != kHierarchyCookie)
@@ -39,26 +61,17 @@ HierarchyOptions hierarchy_options(const ps_hierarchy_def* def) {
   if (def->num_coarse_levels > 0) require(def->coarse_vertex_counts, "coarse_vertex_counts");
   options.coarse_vertex_counts.assign(def->coarse_vertex_counts,
                                       def->coarse_vertex_counts + def->num_coarse_levels);
+  if (num_vertices > 0) options.vertex_groups = pinned_groups(*def, num_vertices);
   return options;
 }
 
-/// Forwards decimation progress (fraction) to the def's callback as percent.
-struct ProgressForward {
-  ps_progress_fn fn;
-  void* user_data;
-  static bool call(void* self, double fraction, const char* phase) {
-    const auto* forward = static_cast<const ProgressForward*>(self);
-    return forward->fn(forward->user_data, static_cast<int32_t>(std::lround(fraction * 100.0)), 100,
-                       phase) == 0;
-  }
-};
-
 /// Validates mesh and builds the hierarchy def asks for.
 std::unique_ptr<ps_hierarchy> build(const ps_hierarchy_def* def, const TriangleMesh& mesh) {
-  const HierarchyOptions options = hierarchy_options(def);
-  ProgressForward forward{def ? def->progress : nullptr, def ? def->progress_user_data : nullptr};
+  const HierarchyOptions options =
+      hierarchy_options(def, static_cast<std::size_t>(mesh.num_vertices()));
+  PercentProgress forward{def ? def->progress : nullptr, def ? def->progress_user_data : nullptr};
   return std::make_unique<ps_hierarchy>(
-      build_hierarchy(mesh, options, forward.fn ? ProgressForward::call : nullptr, &forward));
+      build_hierarchy(mesh, options, forward.fn ? PercentProgress::call : nullptr, &forward));
 }
 
 }  // namespace
@@ -111,7 +124,7 @@ PS_API int32_t ps_hierarchy_create_from_file(const ps_hierarchy_def* def, const 
   return guarded(nullptr, "ps_hierarchy_create_from_file", [&] {
     require(out, "out");
     require(path, "path");
-    hierarchy_options(def);  // a bad def is reported before the file is read
+    hierarchy_options(def, 0);  // a bad def is reported before the file is read
     *out = build(def, read_mesh(path)).release();
   });
 }

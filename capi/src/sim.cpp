@@ -11,28 +11,28 @@ namespace {
 
 /// The handle of a built simulation of `scene` on `hierarchy`, at the coarsest level.
 std::unique_ptr<ps_sim> wrap(const ps_hierarchy* hierarchy, Scene scene,
-                             std::unique_ptr<DirectSimulation> simulation) {
+                             std::unique_ptr<ProgressiveSimulation> simulation) {
   auto sim = std::make_unique<ps_sim>();
   sim->hierarchy = hierarchy;
   sim->scene = std::move(scene);
   sim->simulation = std::move(simulation);
-  sim->records.resize(hierarchy->mesh_hierarchy.levels.size());
   return sim;
 }
 
 /// A simulation of scene on hierarchy (borrowed and counted as in use).
 std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
-  auto simulation = std::make_unique<DirectSimulation>(scene);
+  auto simulation = std::make_unique<ProgressiveSimulation>(scene, hierarchy->shared);
   auto sim = wrap(hierarchy, std::move(scene), std::move(simulation));
   ++hierarchy->simulations;  // last: nothing below can throw
   sim->counts_as_user = true;
   return sim;
 }
 
-/// A simulation of a parsed scene that owns the hierarchy of its merged bodies.
+/// A simulation of a parsed scene that owns the hierarchy of its merged bodies (the levels
+/// its "progressive" section asks for).
 std::unique_ptr<ps_sim> sim_from_scene(Scene scene) {
-  auto simulation = std::make_unique<DirectSimulation>(scene);
-  auto hierarchy = std::make_unique<ps_hierarchy>(build_hierarchy(simulation->model().rest, {}));
+  auto simulation = std::make_unique<ProgressiveSimulation>(scene);
+  auto hierarchy = std::make_unique<ps_hierarchy>(simulation->shared_hierarchy());
   auto sim = wrap(hierarchy.get(), std::move(scene), std::move(simulation));
   sim->owned_hierarchy = std::move(hierarchy);
   return sim;
@@ -65,10 +65,6 @@ PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* de
     require(out, "out");
     ps_sim_def defaults;
     ps_sim_def_init(&defaults);
-    if (hierarchy->mesh_hierarchy.num_levels() > 1)
-      api_fail(PS_ERROR_UNSUPPORTED,
-               "simulations of multi-level hierarchies (progressive preview and refinement) are "
-               "not available in this version; build the hierarchy with num_coarse_levels = 0");
     const TriangleMesh& finest = hierarchy->mesh_hierarchy.levels.back().rest;
     *out = make_sim(hierarchy, scene_from_def(def ? *def : defaults, finest)).release();
   });

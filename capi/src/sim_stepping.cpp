@@ -7,23 +7,18 @@
 namespace progsim::capi {
 namespace {
 
-/// Adds one step's outcome to the level's record.
-void record_step(LevelRecord& record, const StepRecord& step, double time) {
-  ++record.steps;
-  record.newton_iterations += step.newton.iterations;
-  record.converged_steps += step.newton.stop == NewtonStop::converged;
-  record.seconds += step.seconds;
-  record.energy = step.newton.energy;
-  record.gradient_norm = step.newton.gradient_norm;
-  record.simulated_time = time;
+/// Positions of a level (see ProgressiveSimulation::positions), range-checked first.
+Positions level_positions(const ps_sim& sim, int32_t level) {
+  level_mesh(*sim.hierarchy, level);  // range check with the ABI's message
+  return sim.simulation->positions(level);
 }
 
-/// Positions of a level: the live state for the current level, the kept state for a level
-/// already left. (Finer levels appear with the hierarchy's prolongation.)
-Positions level_positions(const ps_sim& sim, int32_t level) {
-  level_mesh(*sim.hierarchy, level);  // range check
-  if (level == sim.level) return sim.simulation->positions();
-  return sim.records[level].positions;
+/// Calls the progress callback; a non-zero answer cancels.
+void report_progress(const ps_sim& sim, int32_t done, int32_t total, const char* phase) {
+  if (sim.progress && sim.progress(sim.progress_user_data, done, total, phase) != 0)
+    api_fail(PS_ERROR_CANCELLED, std::string("cancelled by the progress callback during ") + phase +
+                                     " after " + std::to_string(done) + " of " +
+                                     std::to_string(total));
 }
 
 }  // namespace
@@ -42,14 +37,10 @@ PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps) {
     const BusyGuard busy(*sim);
     for (int32_t s = 0; s < steps; ++s) {
       const StepRecord step = sim->simulation->step();
-      record_step(sim->records[sim->level], step, sim->simulation->time());
-      if (!sim->simulation->dofs().allFinite())
+      if (!sim->simulation->current().dofs().allFinite())
         api_fail(PS_ERROR_NUMERICAL,
                  "step " + std::to_string(step.step) + " produced non-finite positions");
-      if (sim->progress && sim->progress(sim->progress_user_data, s + 1, steps, "preview") != 0)
-        api_fail(PS_ERROR_CANCELLED, "cancelled by the progress callback after " +
-                                         std::to_string(s + 1) + " of " + std::to_string(steps) +
-                                         " steps");
+      report_progress(*sim, s + 1, steps, "preview");
     }
   });
 }
@@ -57,12 +48,29 @@ PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps) {
 PS_API int32_t ps_sim_refine(ps_sim* sim) {
   return guarded(error_slot(sim), "ps_sim_refine", [&] {
     require_idle(sim);
-    const auto finest = sim->hierarchy->mesh_hierarchy.finest();
-    // Simulations of multi-level hierarchies are refused at creation (PS_ERROR_UNSUPPORTED)
-    // until progressive stepping arrives, so every simulation is at its finest level.
-    if (sim->level >= finest)
-      api_fail(PS_ERROR_OUT_OF_RANGE, "already at the finest level " + std::to_string(finest) +
-                                          "; there is nothing to refine");
+    const BusyGuard busy(*sim);
+    report_progress(*sim, 0, 1, "refine");
+    sim->simulation->refine();
+    report_progress(*sim, 1, 1, "refine");
+  });
+}
+
+PS_API int32_t ps_sim_settle(ps_sim* sim, int32_t max_solves, int32_t* equilibrium) {
+  return guarded(error_slot(sim), "ps_sim_settle", [&] {
+    require_idle(sim);
+    if (max_solves < 1)
+      api_fail(PS_ERROR_INVALID_ARGUMENT,
+               "max_solves = " + std::to_string(max_solves) + " must be >= 1");
+    const BusyGuard busy(*sim);
+    bool reached = false;
+    for (int32_t k = 0; k < max_solves && !reached; ++k) {
+      sim->simulation->settle();
+      reached = sim->simulation->records()[sim->simulation->level()].equilibrium;
+      if (!sim->simulation->current().dofs().allFinite())
+        api_fail(PS_ERROR_NUMERICAL, "settling produced non-finite positions");
+      report_progress(*sim, k + 1, max_solves, "settle");
+    }
+    if (equilibrium) *equilibrium = reached ? 1 : 0;
   });
 }
 
@@ -70,7 +78,7 @@ PS_API int32_t ps_sim_current_level(const ps_sim* sim, int32_t* out) {
   return guarded(error_slot(sim), "ps_sim_current_level", [&] {
     require_idle(sim);
     require(out, "out");
-    *out = sim->level;
+    *out = sim->simulation->level();
   });
 }
 
@@ -99,17 +107,22 @@ PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level
     require_idle(sim);
     require(out, "out");
     level_mesh(*sim->hierarchy, level);  // range check
-    const LevelRecord& r = sim->records[level];
+    const LevelRecord& r = sim->simulation->records()[level];
     ps_level_stats stats{};
     stats.level = level;
     stats.steps = r.steps;
     stats.newton_iterations = r.newton_iterations;
-    stats.converged_steps = r.converged_steps;
-    stats.seconds = r.seconds;
+    stats.converged_steps = r.converged_solves;
+    stats.seconds = r.solve_seconds;
     stats.energy = r.energy;
     stats.gradient_norm = r.gradient_norm;
     stats.simulated_time = r.simulated_time;
-    stats.error_rms = stats.error_max = std::numeric_limits<double>::quiet_NaN();
+    const std::optional<StateDistance> error = sim->simulation->error_against_finest(level);
+    stats.error_rms = error ? error->rms : std::numeric_limits<double>::quiet_NaN();
+    stats.error_max = error ? error->max : std::numeric_limits<double>::quiet_NaN();
+    stats.settles = r.settles;
+    stats.refine_seconds = r.refine_seconds;
+    stats.equilibrium = r.equilibrium ? 1 : 0;
     *out = stats;
   });
 }

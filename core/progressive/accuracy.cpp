@@ -9,6 +9,7 @@
 #include "common/error.hpp"
 #include "common/timer.hpp"
 #include "progressive/progressive_simulation.hpp"
+#include "progressive/state_distance.hpp"
 #include "report/line_plot.hpp"
 
 namespace progsim {
@@ -22,11 +23,11 @@ void notify(AccuracyProgress progress, void* user, double fraction, const std::s
     fail(Status::cancelled, "accuracy run cancelled during " + phase);
 }
 
-/// RMS and max of the per-vertex distance ‖x_i − reference_i‖, over `diagonal`.
+/// The row's errors: x against the reference (PSQ accuracy, DESIGN.md metrics).
 void set_errors(AccuracyRow& row, const Positions& x, const Positions& reference, double diagonal) {
-  const Eigen::VectorXd d = (x - reference).rowwise().norm();
-  row.error_rms = std::sqrt(d.squaredNorm() / static_cast<double>(d.size())) / diagonal;
-  row.error_max = d.maxCoeff() / diagonal;
+  const StateDistance d = state_distance(x, reference, diagonal);
+  row.error_rms = d.rms;
+  row.error_max = d.max;
 }
 
 /// The scene solved directly on `level` over its load script, prolonged to the finest mesh.

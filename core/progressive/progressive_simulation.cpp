@@ -177,6 +177,17 @@ Positions ProgressiveSimulation::positions(int level) const {
   return x;
 }
 
+std::optional<StateDistance> ProgressiveSimulation::error_against_finest(int level) const {
+  if (level < 0 || level > finest())
+    fail(Status::out_of_range, "level " + std::to_string(level) + " does not exist (levels 0 to " +
+                                   std::to_string(finest()) + ")");
+  if (finest() == 0 || level_ != finest() || !records_[finest()].equilibrium) return std::nullopt;
+  const Positions converged = sim_->positions();
+  if (level == finest()) return StateDistance{};
+  const double length = bounding_box_diagonal(hierarchy_->levels.back().rest.vertices);
+  return state_distance(prolong_to_finest(level, records_[level].positions), converged, length);
+}
+
 void ProgressiveSimulation::update_scene(Scene scene) {
   validate_scene(scene);
   if (!same_levels(scene.progressive, scene_.progressive))

@@ -3,10 +3,12 @@
 /// preview of a scene's equilibria on level l with the proxy energy, then refinement level by
 /// level to the finest mesh, solved there to convergence with the full energy.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "hierarchy/shell_prolongation.hpp"
+#include "progressive/state_distance.hpp"
 #include "scene/scene.hpp"
 #include "sim/direct_simulation.hpp"
 
@@ -70,6 +72,10 @@ class ProgressiveSimulation {
   /// P^l to the finest level, PSQ eq. 9, and P^k_{k+1} in turn to intermediate ones).
   /// Throws Error(out_of_range) for a level that does not exist.
   Positions positions(int level) const;
+  /// Once the finest level is at equilibrium (the converged result): level `level`'s state,
+  /// prolonged to the finest mesh, against it (over the finest rest bounding-box diagonal);
+  /// zero for the finest level itself. Before that, or with a single level: nullopt.
+  std::optional<StateDistance> error_against_finest(int level) const;
   /// Replaces the scene between steps (materials, loads, handle motions, effects, solver
   /// settings), keeping the level, state and time. The meshes and the handles' vertex sets
   /// must stay (they define the hierarchy). On Error nothing changed.

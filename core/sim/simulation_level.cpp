@@ -66,7 +66,8 @@ void check_hierarchy_matches(const MeshHierarchy& hierarchy, const TriangleMesh&
       fail(Status::invalid_argument,
            "vertex " + std::to_string(v) + " is in handle " + std::to_string(vertex_handle[v]) +
                " of the scene but in group " + std::to_string(hierarchy.input_group[v]) +
-               " of the hierarchy: build the hierarchy with the scene's handles as vertex groups");
+               " of the hierarchy: build the hierarchy with the scene's handles as vertex groups "
+               "(C ABI: ps_hierarchy_def.pinned_vertices)");
 }
 
 }  // namespace progsim

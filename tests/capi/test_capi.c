@@ -340,8 +340,9 @@ static void test_levels(void) {
   CHECK(count == 3 * 441 && worst < 1e-9);
   CHECK_ERROR(ps_hierarchy_prolong(h, 0, coarse_rest, 89, prolonged, 3 * 441, &count),
               PS_ERROR_INVALID_ARGUMENT, ps_hierarchy_last_error(h), "needs 90");
-  ps_sim* sim = NULL;
-  CHECK_ERROR(ps_sim_create(h, NULL, &sim), PS_ERROR_UNSUPPORTED, ps_last_error(), "multi-level");
+  ps_sim* sim = NULL; /* the default mode is dynamic: Progressive Dynamics is not in yet */
+  CHECK_ERROR(ps_sim_create(h, NULL, &sim), PS_ERROR_UNSUPPORTED, ps_last_error(),
+              "Progressive Dynamics");
 
   char saved[4096];
   snprintf(saved, sizeof saved, "%s/test_capi_levels.hierarchy",
@@ -363,6 +364,93 @@ static void test_levels(void) {
   CHECK(h == NULL);
 }
 
+/* A progressive (PSQ) simulation through the ABI: a cloth hanging from its top row (in its own
+ * plane, so the equilibrium is a stretched cloth), previewed on level 0, refined to the finest
+ * level and settled there; errors of the coarse levels against the converged result. */
+static void test_progressive(void) {
+  int32_t top_row[21];
+  for (int i = 0; i < 21; ++i) top_row[i] = 420 + i; /* y = 1 in square_cloth.obj */
+  ps_hierarchy_def hdef;
+  ps_hierarchy_def_init(&hdef);
+  const int32_t coarse[2] = {40, 120};
+  hdef.coarse_vertex_counts = coarse;
+  hdef.num_coarse_levels = 2;
+  hdef.pinned_vertices = top_row;
+  hdef.num_pinned_vertices = 21;
+  ps_hierarchy* h = NULL;
+  CHECK(ps_hierarchy_create_from_file(&hdef, path_in_source("scenes/meshes/square_cloth.obj"),
+                                      &h) == PS_OK);
+  if (!h) return;
+  ps_sim_def def;
+  ps_sim_def_init(&def);
+  def.mode = PS_MODE_QUASISTATIC;
+  def.simulation_time_step = 1.0;
+  def.pinned_vertices = top_row;
+  def.num_pinned_vertices = 20; /* one short of the hierarchy's */
+  ps_sim* sim = NULL;
+  CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_INVALID_ARGUMENT, ps_last_error(),
+              "pinned_vertices");
+  def.num_pinned_vertices = 21;
+  CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
+  if (!sim) {
+    ps_hierarchy_destroy(h);
+    return;
+  }
+  int32_t level = -1, equilibrium = 0;
+  size_t count = 0;
+  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
+  CHECK(ps_sim_settle(sim, 300, &equilibrium) == PS_OK && equilibrium == 1);
+  CHECK(ps_sim_get_positions(sim, 2, NULL, 0, &count) == PS_OK && count == 3 * 441);
+  ps_level_stats stats;
+  CHECK(ps_sim_get_level_stats(sim, 0, &stats) == PS_OK && isnan(stats.error_rms));
+  CHECK(stats.steps == 1 && stats.settles >= 1 && stats.equilibrium == 1);
+  CHECK(ps_sim_refine(sim) == PS_OK);
+  CHECK(ps_sim_current_level(sim, &level) == PS_OK && level == 1);
+  CHECK(ps_sim_settle(sim, 300, &equilibrium) == PS_OK && equilibrium == 1);
+  CHECK(ps_sim_refine(sim) == PS_OK);
+  CHECK(ps_sim_settle(sim, 50, &equilibrium) == PS_OK && equilibrium == 1);
+  CHECK(ps_sim_get_level_stats(sim, 1, &stats) == PS_OK && stats.refine_seconds > 0.0);
+  CHECK(stats.error_max >= stats.error_rms && stats.error_max < 0.05);
+  CHECK(ps_sim_get_level_stats(sim, 2, &stats) == PS_OK && stats.error_max == 0.0);
+  CHECK_ERROR(ps_sim_refine(sim), PS_ERROR_OUT_OF_RANGE, ps_sim_last_error(sim), "finest");
+  CHECK_ERROR(ps_sim_settle(sim, 0, NULL), PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),
+              "max_solves");
+  ps_sim_destroy(sim);
+  ps_hierarchy_destroy(h);
+}
+
+/* The accuracy-vs-time numbers through the ABI, on the bundled plate-buckling scene. */
+static void test_accuracy(void) {
+  ps_accuracy* accuracy = NULL;
+  CHECK(ps_accuracy_run_scene_file(path_in_source("scenes/psq_plate_buckling.json"), NULL, NULL,
+                                   &accuracy) == PS_OK);
+  if (!accuracy) return;
+  int32_t rows = 0;
+  CHECK(ps_accuracy_num_rows(accuracy, &rows) == PS_OK && rows == 6);
+  ps_accuracy_row row;
+  CHECK(ps_accuracy_get_row(accuracy, 0, &row) == PS_OK);
+  CHECK(row.method == PS_METHOD_PROGRESSIVE && row.level == 0 && row.seconds > 0.0);
+  CHECK(row.error_max > 0.0 && row.error_max < 0.1);
+  CHECK(ps_accuracy_get_row(accuracy, 5, &row) == PS_OK);
+  CHECK(row.method == PS_METHOD_DIRECT && row.level == 2 && row.vertices == 625);
+  CHECK_ERROR(ps_accuracy_get_row(accuracy, 6, &row), PS_ERROR_OUT_OF_RANGE, ps_last_error(),
+              "6 rows");
+  char dir[4096];
+  snprintf(dir, sizeof dir, "%s/test_capi_accuracy", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+  CHECK(ps_accuracy_write(accuracy, dir) == PS_OK);
+  char csv[4200];
+  snprintf(csv, sizeof csv, "%s/accuracy.csv", dir);
+  FILE* file = fopen(csv, "r");
+  CHECK(file != NULL);
+  if (file) fclose(file);
+  ps_accuracy_destroy(accuracy);
+  accuracy = NULL;
+  CHECK_ERROR(ps_accuracy_run_scene_file(path_in_source("scenes/hanging_cloth.json"), NULL, NULL,
+                                         &accuracy),
+              PS_ERROR_INVALID_SCENE, ps_last_error(), "coarse levels");
+  CHECK(accuracy == NULL);
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_capi SOURCE_DIR\n");
@@ -375,6 +463,8 @@ int main(int argc, char** argv) {
   test_parameter_listing_mode_and_lifetimes();
   test_scene_file();
   test_levels();
+  test_progressive();
+  test_accuracy();
   if (failures)
     fprintf(stderr, "%d checks failed\n", failures);
   else

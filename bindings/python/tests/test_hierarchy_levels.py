@@ -94,5 +94,5 @@ def test_bad_requests_are_clear_errors(levels):
         levels.prolong(np.full((30, 3), np.nan), 0)
     with pytest.raises(progsim.OutOfRangeError):
         levels.prolong(np.zeros((30, 3)), 7)
-    with pytest.raises(progsim.UnsupportedError, match="multi-level"):
-        progsim.Simulation(levels)
+    with pytest.raises(progsim.UnsupportedError, match="Progressive Dynamics"):
+        progsim.Simulation(levels)  # the default mode is dynamic

@@ -44,7 +44,7 @@ from ._errors import (  # noqa: F401 - re-exported through __all__
 )
 
 #: Version of this Python package.
-__version__ = "0.3.0"
+__version__ = "0.4.0"
 
 #: The header version these bindings were compiled against (major·10000 + minor·100 + patch).
 HEADER_VERSION: int = _lib.PS_VERSION_HEADER
@@ -52,12 +52,13 @@ HEADER_VERSION: int = _lib.PS_VERSION_HEADER
 if _lib.ps_check_version(HEADER_VERSION) != _lib.PS_OK:
     raise VersionMismatchError(_ffi.string(_lib.ps_last_error()).decode("utf-8", "replace"))
 
-from .hierarchy import Hierarchy  # noqa: E402 - after the version check
+from .accuracy import Accuracy, AccuracyRow  # noqa: E402 - after the version check
+from .hierarchy import Hierarchy  # noqa: E402
 from .simulation import EFFECTS, MODES, PARAMETERS, LevelStats, Simulation  # noqa: E402
 
 
 def library_version() -> str:
-    """The loaded libprogsim's version as text, e.g. ``"0.3.0"``."""
+    """The loaded libprogsim's version as text, e.g. ``"0.4.0"``."""
     return _ffi.string(_lib.ps_version_string()).decode("ascii")
 
 
@@ -67,6 +68,8 @@ def library_version_number() -> int:
 
 
 __all__ = [
+    "Accuracy",
+    "AccuracyRow",
     "Hierarchy",
     "Simulation",
     "LevelStats",

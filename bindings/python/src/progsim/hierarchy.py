@@ -29,27 +29,37 @@ __all__ = ["Hierarchy"]
 PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 
 
-def _hierarchy_def(coarse_vertex_counts: Optional[Sequence[int]], run: ProgressRun):
+def _index_buffer(values: Optional[Sequence[int]], name: str):
+    """``values`` as an int32 array and a cffi buffer over it (NULL when empty)."""
+    array = as_indices([] if values is None else values, name, "(k,)")
+    return array, (ffi.from_buffer("int32_t[]", array) if array.size else ffi.NULL)
+
+
+def _hierarchy_def(
+    coarse_vertex_counts: Optional[Sequence[int]], pinned: Optional[Sequence[int]], run: ProgressRun
+):
     """A filled ``ps_hierarchy_def*`` with the progress trampoline installed, and the buffers
     it borrows (keep them alive during the call)."""
     definition = ffi.new("ps_hierarchy_def*")
     lib.ps_hierarchy_def_init(definition)
-    counts = as_indices(
-        [] if coarse_vertex_counts is None else coarse_vertex_counts, "coarse_vertex_counts", "(k,)"
-    )
-    buffer = ffi.from_buffer("int32_t[]", counts) if counts.size else ffi.NULL
+    counts, buffer = _index_buffer(coarse_vertex_counts, "coarse_vertex_counts")
     definition.coarse_vertex_counts = buffer
     definition.num_coarse_levels = int(counts.size)
+    pins, pin_buffer = _index_buffer(pinned, "pinned")
+    definition.pinned_vertices = pin_buffer
+    definition.num_pinned_vertices = int(pins.size)
     handle = ffi.new_handle(run)
     definition.progress = lib._progsim_progress
     definition.progress_user_data = handle
-    return definition, (counts, buffer, handle)
+    return definition, (counts, buffer, pins, pin_buffer, handle)
 
 
-def _create(function, coarse_vertex_counts, progress: ProgressArg, *args: Any) -> "ffi.CData":
+def _create(
+    function, coarse_vertex_counts, pinned, progress: ProgressArg, *args: Any
+) -> "ffi.CData":
     """Runs a ps_hierarchy_create* call with a def and progress reporting; returns the handle."""
     run = ProgressRun(progress)
-    definition, keep = _hierarchy_def(coarse_vertex_counts, run)
+    definition, keep = _hierarchy_def(coarse_vertex_counts, pinned, run)
     out = ffi.new("ps_hierarchy**")
     try:
         status = function(definition, *args, out)
@@ -86,6 +96,7 @@ class Hierarchy(NativeObject):
         faces: Any,
         *,
         coarse_vertex_counts: Optional[Sequence[int]] = None,
+        pinned: Optional[Sequence[int]] = None,
         progress: ProgressArg = False,
     ) -> None:
         """Builds a hierarchy from a triangle mesh, validating it first.
@@ -97,6 +108,8 @@ class Hierarchy(NativeObject):
                 C-contiguous int32 (no copy if it already is).
             coarse_vertex_counts: vertex counts of the coarser levels (distinct, each at least
                 4 and below n); ``None`` or empty: a single level, the mesh itself.
+            pinned: vertices a simulation will pin (``Simulation(pinned=...)``): kept on every
+                level at their rest positions. A progressive simulation's pins must be these.
             progress: ``True`` for a tqdm bar over the decimation, ``False`` for none, or a
                 callable ``(done, total, phase) -> bool`` (percent; return True to cancel).
 
@@ -114,6 +127,7 @@ class Hierarchy(NativeObject):
             _create(
                 lib.ps_hierarchy_create,
                 coarse_vertex_counts,
+                pinned,
                 progress,
                 ffi.from_buffer("double[]", vertex_array),
                 vertex_array.shape[0],
@@ -128,6 +142,7 @@ class Hierarchy(NativeObject):
         path: PathLike,
         *,
         coarse_vertex_counts: Optional[Sequence[int]] = None,
+        pinned: Optional[Sequence[int]] = None,
         progress: ProgressArg = False,
     ) -> "Hierarchy":
         """Builds a hierarchy from an OBJ, OFF or PLY triangle mesh file (positions in metres),
@@ -141,7 +156,11 @@ class Hierarchy(NativeObject):
         self._init_native()
         self._adopt(
             _create(
-                lib.ps_hierarchy_create_from_file, coarse_vertex_counts, progress, os.fsencode(path)
+                lib.ps_hierarchy_create_from_file,
+                coarse_vertex_counts,
+                pinned,
+                progress,
+                os.fsencode(path),
             )
         )
         return self

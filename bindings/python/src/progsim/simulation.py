@@ -99,6 +99,9 @@ class LevelStats:
     error_max: (
         float  #: max distance to the converged finest solution / bbox diagonal (NaN until measured)
     )
+    settles: int  #: solves at a fixed time (:meth:`Simulation.settle`)
+    equilibrium: bool  #: the last solve met the tolerance
+    refine_seconds: float  #: wall time refining the coarser level into this one, s
 
 
 def _effect_bit(name: str) -> int:
@@ -529,15 +532,41 @@ class Simulation(NativeObject):
         )
 
     def refine(self, progress: ProgressArg = False) -> None:
-        """Refines the current level l to l + 1, so that later steps run on the finer level.
+        """Refines the current level l to l + 1 with the prolongation P^l_{l+1} (PSQ eq. 7),
+        so that later steps run on the finer level (previews below the finest level).
 
         Args:
             progress: as for :meth:`step_preview` (phase ``"refine"``).
 
         Raises:
             OutOfRangeError: already at the finest level (the state is unchanged).
+            IntersectingError: the prolonged state intersects (safe refinement with contact,
+                PSQ §4.4, is not in this version); the state is unchanged.
         """
         self._run(lib.ps_sim_refine, progress=progress)
+
+    def settle(self, max_solves: int = 100, progress: ProgressArg = False) -> bool:
+        """Solves again at the current time and loads until the level is at equilibrium (a
+        Newton solve meets the tolerance) or ``max_solves`` solves were made.
+
+        Returns:
+            Whether equilibrium was reached.
+
+        Raises:
+            InvalidArgumentError: ``max_solves < 1``.
+            CancelledError: the progress callable asked to stop.
+        """
+        max_solves = int32_value(max_solves, "max_solves")
+        reached = ffi.new("int32_t*")
+        self._run(
+            lib.ps_sim_settle,
+            max_solves,
+            reached,
+            progress=progress,
+            total=max_solves if max_solves >= 1 else None,
+            phase="settle",
+        )
+        return bool(reached[0])
 
     # -- results ------------------------------------------------------------------------------
 
@@ -587,6 +616,9 @@ class Simulation(NativeObject):
             simulated_time=float(out.simulated_time),
             error_rms=float(out.error_rms),
             error_max=float(out.error_max),
+            settles=int(out.settles),
+            equilibrium=bool(out.equilibrium),
+            refine_seconds=float(out.refine_seconds),
         )
 
     def __repr__(self) -> str:

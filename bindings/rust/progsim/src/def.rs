@@ -15,10 +15,13 @@ pub struct HierarchyDef {
     /// Vertex count of each level below the finest (distinct, each at least 4 and below the
     /// mesh's; any order). Empty: a single level.
     pub coarse_vertex_counts: Vec<i32>,
+    /// Vertices a simulation will pin ([`SimulationDef`]'s pinned vertices): kept on every
+    /// level at their rest positions. A progressive simulation's pins must be exactly these.
+    pub pinned_vertices: Vec<i32>,
 }
 
 impl HierarchyDef {
-    /// The C def borrowing `self.coarse_vertex_counts`: valid while `self` is.
+    /// The C def borrowing `self`'s vectors: valid while `self` is.
     pub(crate) fn to_raw(&self) -> Result<sys::ps_hierarchy_def> {
         let mut raw = MaybeUninit::<sys::ps_hierarchy_def>::uninit();
         // SAFETY: ps_hierarchy_def_init() fills every field of a non-NULL def.
@@ -31,6 +34,10 @@ impl HierarchyDef {
         })?;
         if !self.coarse_vertex_counts.is_empty() {
             raw.coarse_vertex_counts = self.coarse_vertex_counts.as_ptr();
+        }
+        if !self.pinned_vertices.is_empty() {
+            raw.pinned_vertices = self.pinned_vertices.as_ptr();
+            raw.num_pinned_vertices = self.pinned_vertices.len();
         }
         Ok(raw)
     }
@@ -396,11 +403,17 @@ pub struct LevelStats {
     /// Simulated time reached, s.
     pub simulated_time: f64,
     /// RMS vertex distance to the converged finest solution over the bounding-box diagonal
-    /// (dimensionless); `None` until measured (progressive accuracy reports fill it).
+    /// (dimensionless); `None` until the finest level is at equilibrium.
     pub error_rms: Option<f64>,
     /// Maximum vertex distance to the converged finest solution over the bounding-box
     /// diagonal (dimensionless); `None` until measured.
     pub error_max: Option<f64>,
+    /// Solves at a fixed time ([`Simulation::settle`](crate::Simulation::settle)).
+    pub settles: usize,
+    /// Whether the last solve met the tolerance.
+    pub equilibrium: bool,
+    /// Wall time refining the coarser level into this one, s.
+    pub refine_seconds: f64,
 }
 
 impl From<sys::ps_level_stats> for LevelStats {
@@ -417,6 +430,9 @@ impl From<sys::ps_level_stats> for LevelStats {
             simulated_time: raw.simulated_time,
             error_rms: measured(raw.error_rms),
             error_max: measured(raw.error_max),
+            settles: crate::count_from(raw.settles),
+            equilibrium: raw.equilibrium != 0,
+            refine_seconds: raw.refine_seconds,
         }
     }
 }

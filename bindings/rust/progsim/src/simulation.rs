@@ -263,17 +263,35 @@ impl<'h> Simulation<'h> {
         self.with_progress(progress, |sim| unsafe { sys::ps_sim_step_preview(sim, steps) })
     }
 
-    /// Refines the current level l to l + 1 (safe refinement), so that later steps run on the
-    /// finer level.
+    /// Refines the current level l to l + 1 with the prolongation P^l_{l+1} (PSQ eq. 7), so
+    /// that later steps run on the finer level (previews below the finest level).
     ///
     /// # Errors
-    /// [`Status::OutOfRange`] at the finest level, the state unchanged. Hierarchies have a
-    /// single level in this library version, so this is what it returns for now.
+    /// [`Status::OutOfRange`] at the finest level; [`Status::Intersecting`] when the prolonged
+    /// state intersects (safe refinement with contact is not in this version). The state is
+    /// unchanged on error.
     pub fn refine(&mut self) -> Result<()> {
         let raw = self.handle()?;
         // SAFETY: live simulation.
         let status = unsafe { sys::ps_sim_refine(raw) };
         self.check(status)
+    }
+
+    /// Solves again at the current time and loads until the level is at equilibrium or
+    /// `max_solves` solves were made; returns whether equilibrium was reached.
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] if `max_solves` is 0 or does not fit the C ABI.
+    pub fn settle(&mut self, max_solves: u32) -> Result<bool> {
+        let raw = self.handle()?;
+        let max_solves = i32::try_from(max_solves).map_err(|_| {
+            Error::new(Status::InvalidArgument, "max_solves does not fit the C ABI")
+        })?;
+        let mut reached = 0i32;
+        // SAFETY: live simulation; `reached` outlives the call.
+        let status = unsafe { sys::ps_sim_settle(raw, max_solves, &mut reached) };
+        self.check(status)?;
+        Ok(reached != 0)
     }
 
     /// As [`refine`](Self::refine), reporting progress as

@@ -4,10 +4,10 @@
 mod common;
 
 use common::square_cloth;
-use progsim::{Hierarchy, HierarchyDef, Simulation, SimulationDef, Status};
+use progsim::{Hierarchy, HierarchyDef, Mode, Simulation, SimulationDef, Status};
 
 fn cloth_levels() -> Hierarchy {
-    let def = HierarchyDef { coarse_vertex_counts: vec![30, 110] };
+    let def = HierarchyDef { coarse_vertex_counts: vec![30, 110], ..Default::default() };
     Hierarchy::from_file_with(&def, square_cloth()).expect("decimate the bundled cloth")
 }
 
@@ -65,9 +65,38 @@ fn bad_requests_are_errors() {
     assert!(error.message.contains("needs 90"), "{}", error.message);
     assert_eq!(hierarchy.prolong(5, &[[0.0; 3]; 30]).unwrap_err().code, Status::OutOfRange);
     assert_eq!(hierarchy.num_expansion_batches(2).unwrap_err().code, Status::OutOfRange);
-    let def = HierarchyDef { coarse_vertex_counts: vec![50, 50] };
+    let def = HierarchyDef { coarse_vertex_counts: vec![50, 50], ..Default::default() };
     let error = Hierarchy::from_file_with(&def, square_cloth()).unwrap_err();
     assert_eq!(error.code, Status::InvalidArgument);
+    // The default mode is dynamic: Progressive Dynamics is not in this version.
     let error = Simulation::new(&hierarchy, &SimulationDef::default()).unwrap_err();
     assert_eq!(error.code, Status::Unsupported);
+    assert!(error.message.contains("Progressive Dynamics"), "{}", error.message);
+}
+
+#[test]
+fn progressive_preview_refines_to_the_converged_finest() {
+    let top_row: Vec<i32> = (420..441).collect(); // y = 1 in the bundled square cloth
+    let def =
+        HierarchyDef { coarse_vertex_counts: vec![40, 120], pinned_vertices: top_row.clone() };
+    let hierarchy = Hierarchy::from_file_with(&def, square_cloth()).unwrap();
+    let mut sim_def = SimulationDef::default();
+    sim_def.mode = Mode::Quasistatic;
+    sim_def.time_step = 1.0;
+    sim_def.pinned_vertices = top_row;
+    let mut sim = Simulation::new(&hierarchy, &sim_def).unwrap();
+    sim.step_preview(1).unwrap();
+    assert!(sim.settle(300).unwrap());
+    assert_eq!(sim.positions(2).unwrap().len(), 441); // the preview prolonged
+    sim.refine().unwrap();
+    assert!(sim.settle(300).unwrap());
+    sim.refine().unwrap();
+    assert!(sim.settle(50).unwrap());
+    let coarse = sim.level_stats(0).unwrap();
+    let error = coarse.error_max.expect("measured once the finest level converged");
+    assert!(error > 0.0 && error < 0.05, "{error}");
+    assert_eq!(sim.level_stats(2).unwrap().error_max, Some(0.0));
+    assert!(sim.level_stats(1).unwrap().refine_seconds > 0.0);
+    assert_eq!(sim.refine().unwrap_err().code, Status::OutOfRange);
+    assert_eq!(sim.settle(0).unwrap_err().code, Status::InvalidArgument);
 }

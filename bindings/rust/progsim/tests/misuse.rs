@@ -51,7 +51,7 @@ fn bad_meshes_and_files_are_rejected() {
         Status::Io,
         "/nonexistent/mesh.obj",
     );
-    let def = HierarchyDef { coarse_vertex_counts: vec![9] };
+    let def = HierarchyDef { coarse_vertex_counts: vec![9], ..Default::default() };
     assert_error(
         Hierarchy::from_mesh_with(&def, &GRID_VERTICES, &GRID_FACES),
         Status::InvalidArgument,

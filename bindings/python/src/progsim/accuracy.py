@@ -1,0 +1,101 @@
+"""What accuracy costs in time (``ps_accuracy``): a scene solved progressively and directly on
+every level of its hierarchy, each result compared with the converged finest one."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import List, Union
+
+from ._native import NativeObject, ProgressArg, ProgressRun, check_create
+from ._progsim_cffi import ffi, lib
+
+__all__ = ["AccuracyRow", "Accuracy"]
+
+PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
+
+
+@dataclass(frozen=True)
+class AccuracyRow:
+    """One level's result (``ps_accuracy_row``), as ``progsim accuracy`` writes it."""
+
+    method: str  #: ``"progressive"`` (preview, refinement; PSQ) or ``"direct"``
+    level: int  #: 0 = coarsest
+    vertices: int  #: of the level's mesh
+    newton_iterations: int  #: on the level
+    #: s; progressive: from the start until this level's equilibrium, coarser levels and
+    #: refinements included; direct: the level's own solve over the load script
+    seconds: float
+    refine_seconds: float  #: s, building the level's start from the coarser level
+    error_rms: float  #: RMS distance to the converged finest result / bbox diagonal
+    error_max: float  #: max distance to the converged finest result / bbox diagonal
+
+
+class Accuracy(NativeObject):
+    """Runs a scene file (with a ``"progressive"`` section) progressively and directly on every
+    level; :attr:`rows` holds the results, :meth:`write` the CSV, Markdown and PNG report.
+
+    Example::
+
+        with progsim.Accuracy("scenes/psq_plate_buckling.json", progress=True) as report:
+            for row in report.rows:
+                print(row.method, row.level, row.seconds, row.error_max)
+            report.write("results/plate")
+    """
+
+    _last_error_fn = staticmethod(lambda handle: lib.ps_last_error())
+
+    def __init__(self, scene_path: PathLike, *, progress: ProgressArg = False) -> None:
+        """Runs the scene (long: ``progress=True`` shows a bar per phase).
+
+        Raises:
+            ProgsimIOError: the file cannot be read.
+            InvalidSceneError: a malformed scene, or one without coarse levels.
+            UnsupportedError: a dynamic scene.
+            CancelledError: the progress callable asked to stop.
+        """
+        super().__init__()
+        run = ProgressRun(progress)
+        out = ffi.new("ps_accuracy**")
+        handle = ffi.new_handle(run)
+        try:
+            status = lib.ps_accuracy_run_scene_file(
+                os.fsencode(scene_path), lib._progsim_progress, handle, out
+            )
+        finally:
+            run.close()
+        run.reraise()
+        check_create(status)
+        self._cdata = ffi.gc(out[0], lib.ps_accuracy_destroy)
+        self.rows: List[AccuracyRow] = [self._row(k) for k in range(self._num_rows())]
+
+    def _num_rows(self) -> int:
+        count = ffi.new("int32_t*")
+        self._call(lib.ps_accuracy_num_rows, count)
+        return int(count[0])
+
+    def _row(self, index: int) -> AccuracyRow:
+        row = ffi.new("ps_accuracy_row*")
+        self._call(lib.ps_accuracy_get_row, index, row)
+        return AccuracyRow(
+            method="progressive" if row.method == lib.PS_METHOD_PROGRESSIVE else "direct",
+            level=int(row.level),
+            vertices=int(row.vertices),
+            newton_iterations=int(row.newton_iterations),
+            seconds=float(row.seconds),
+            refine_seconds=float(row.refine_seconds),
+            error_rms=float(row.error_rms),
+            error_max=float(row.error_max),
+        )
+
+    def write(self, directory: PathLike) -> None:
+        """Writes ``accuracy.csv``, ``accuracy.md``, ``error_vs_time.png`` and
+        ``error_by_level.png`` into ``directory`` (created).
+
+        Raises:
+            ProgsimIOError: a file cannot be written.
+        """
+        self._call(lib.ps_accuracy_write, os.fsencode(directory))
+
+    def __repr__(self) -> str:
+        return f"<progsim.Accuracy {len(self.rows)} rows>"

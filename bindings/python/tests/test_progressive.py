@@ -1,0 +1,98 @@
+"""Progressive simulation (PSQ) through Python: preview on the coarsest level, refinement to
+the finest, errors of the coarse levels against the converged result, and the accuracy report."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import progsim
+
+from conftest import MESH
+
+TOP_ROW = list(range(420, 441))  # y = 1 in the bundled square cloth
+PLATE = Path(__file__).resolve().parents[3] / "scenes" / "psq_plate_buckling.json"
+
+
+@pytest.fixture()
+def hanging():
+    """A cloth hanging from its top row in its own plane: a stable equilibrium, 3 levels."""
+    with progsim.Hierarchy.from_file(
+        MESH, coarse_vertex_counts=[40, 120], pinned=TOP_ROW
+    ) as hierarchy:
+        with progsim.Simulation(
+            hierarchy, mode="quasistatic", time_step=1.0, pinned=TOP_ROW
+        ) as sim:
+            yield sim
+
+
+def test_preview_refine_and_converge(hanging):
+    sim = hanging
+    sim.step_preview(1)
+    assert sim.settle(300)
+    assert sim.current_level == 0
+    preview = sim.positions(-1)  # the preview prolonged to the finest mesh
+    assert preview.shape == (441, 3)
+    stats = sim.level_stats(0)
+    assert stats.steps == 1 and stats.equilibrium and math.isnan(stats.error_rms)
+    sim.refine()
+    assert sim.current_level == 1 and sim.settle(300)
+    sim.refine()
+    assert sim.settle(50)
+    assert sim.level_stats(1).refine_seconds > 0.0
+    coarse = sim.level_stats(0)
+    assert 0.0 < coarse.error_max < 0.05 and coarse.error_rms <= coarse.error_max
+    assert sim.level_stats(2).error_max == 0.0
+    rest = sim.hierarchy.rest_positions(-1)
+    assert np.array_equal(sim.positions()[TOP_ROW], rest[TOP_ROW])  # the pins held
+    assert sim.positions()[:, 1].min() < rest[:, 1].min()  # it stretched under gravity
+    with pytest.raises(progsim.OutOfRangeError, match="finest"):
+        sim.refine()
+
+
+def test_pins_must_be_the_hierarchys(hanging):
+    with pytest.raises(progsim.InvalidArgumentError, match="pinned_vertices"):
+        progsim.Simulation(
+            hanging.hierarchy, mode="quasistatic", time_step=1.0, pinned=TOP_ROW[:-1]
+        )
+
+
+def test_settle_rejects_nonsense(hanging):
+    with pytest.raises(progsim.InvalidArgumentError, match="max_solves"):
+        hanging.settle(0)
+
+
+def test_accuracy_report(tmp_path):
+    phases = []
+    with progsim.Accuracy(
+        PLATE, progress=lambda done, total, phase: phases.append(phase) and False
+    ) as report:
+        assert [(row.method, row.level) for row in report.rows] == [
+            ("progressive", 0),
+            ("progressive", 1),
+            ("progressive", 2),
+            ("direct", 0),
+            ("direct", 1),
+            ("direct", 2),
+        ]
+        assert report.rows[2].error_max == 0.0  # the reference itself
+        assert report.rows[0].seconds < report.rows[2].seconds
+        assert all(row.vertices > 0 and row.newton_iterations > 0 for row in report.rows)
+        report.write(tmp_path / "plate")
+    assert "progressive level 1" in phases and "direct level 2" in phases
+    written = sorted(p.name for p in (tmp_path / "plate").iterdir())
+    assert written == ["accuracy.csv", "accuracy.md", "error_by_level.png", "error_vs_time.png"]
+    assert (tmp_path / "plate" / "error_vs_time.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_accuracy_needs_coarse_levels(tmp_path):
+    scene = tmp_path / "flat.json"
+    scene.write_text(
+        '{"effects": ["membrane"], "bodies": [{"name": "s", "mesh": '
+        '{"generator": "grid", "width": 1, "height": 1, "nx": 2, "ny": 2}}]}'
+    )
+    with pytest.raises(progsim.InvalidSceneError, match="coarse levels"):
+        progsim.Accuracy(scene)

@@ -1,0 +1,79 @@
+// ps_accuracy_*: what accuracy costs in time, progressive against direct on every level.
+#include "progressive/accuracy.hpp"
+
+#include <cmath>
+
+#include "api_guard.hpp"
+#include "percent_progress.hpp"
+#include "progsim.h"
+#include "scene/scene_json.hpp"
+
+/// The results of one accuracy run. Immutable once created.
+struct ps_accuracy {
+  progsim::AccuracyReport report;
+};
+
+namespace progsim::capi {
+namespace {
+
+ps_method method_of(AccuracyRow::Method m) {
+  return m == AccuracyRow::Method::progressive ? PS_METHOD_PROGRESSIVE : PS_METHOD_DIRECT;
+}
+
+}  // namespace
+}  // namespace progsim::capi
+
+using namespace progsim;
+using namespace progsim::capi;
+
+extern "C" {
+
+PS_API int32_t ps_accuracy_run_scene_file(const char* path, ps_progress_fn progress,
+                                          void* user_data, ps_accuracy** out) {
+  return guarded(nullptr, "ps_accuracy_run_scene_file", [&] {
+    require(path, "path");
+    require(out, "out");
+    PercentProgress forward{progress, user_data};
+    auto accuracy = std::make_unique<ps_accuracy>();
+    accuracy->report = run_accuracy(load_scene_file(path), 500,
+                                    progress ? PercentProgress::call : nullptr, &forward);
+    *out = accuracy.release();
+  });
+}
+
+PS_API void ps_accuracy_destroy(ps_accuracy* accuracy) {
+  delete accuracy;
+}
+
+PS_API int32_t ps_accuracy_num_rows(const ps_accuracy* accuracy, int32_t* out) {
+  return guarded(nullptr, "ps_accuracy_num_rows", [&] {
+    require(accuracy, "accuracy");
+    require(out, "out");
+    *out = static_cast<int32_t>(accuracy->report.rows.size());
+  });
+}
+
+PS_API int32_t ps_accuracy_get_row(const ps_accuracy* accuracy, int32_t index,
+                                   ps_accuracy_row* out) {
+  return guarded(nullptr, "ps_accuracy_get_row", [&] {
+    require(accuracy, "accuracy");
+    require(out, "out");
+    const auto n = static_cast<int32_t>(accuracy->report.rows.size());
+    if (index < 0 || index >= n)
+      api_fail(PS_ERROR_OUT_OF_RANGE,
+               "row " + std::to_string(index) + " does not exist (" + std::to_string(n) + " rows)");
+    const AccuracyRow& r = accuracy->report.rows[index];
+    *out = ps_accuracy_row{method_of(r.method), r.level,          r.vertices,  r.newton_iterations,
+                           r.seconds,           r.refine_seconds, r.error_rms, r.error_max};
+  });
+}
+
+PS_API int32_t ps_accuracy_write(const ps_accuracy* accuracy, const char* dir) {
+  return guarded(nullptr, "ps_accuracy_write", [&] {
+    require(accuracy, "accuracy");
+    require(dir, "dir");
+    write_accuracy_report(accuracy->report, dir);
+  });
+}
+
+}  // extern "C"
