@@ -35,6 +35,22 @@ ProlongedElastics::ProlongedElastics(std::vector<std::shared_ptr<const ShellProl
   fine_gradient_dofs_.resize(3 * n_fine);
 }
 
+ProlongedElastics::ProlongedElastics(std::vector<std::shared_ptr<const ShellProlongation>> chain,
+                                     std::vector<std::unique_ptr<EnergyTerm>> finest_terms,
+                                     const Positions& finest_rest)
+    : ProlongedElastics(std::move(chain), std::move(finest_terms),
+                        std::vector<std::unique_ptr<EnergyTerm>>{}) {
+  ProlongationMatrix intrinsic = chain_.front()->intrinsic();  // U = U_L^{L−1} ⋯ U_{l+1}^l
+  for (std::size_t k = 1; k < chain_.size(); ++k)
+    intrinsic = ProlongationMatrix(chain_[k]->intrinsic() * intrinsic);
+  finest_->finalize();
+  galerkin_ = std::make_unique<GalerkinHessian>(intrinsic, *finest_, as_dofs(finest_rest));
+}
+
+std::size_t ProlongedElastics::hessian_entry_count() const {
+  return galerkin_ ? galerkin_->entry_count() : entry_offsets_.back();
+}
+
 void ProlongedElastics::prolong(const Vector& x) const {
   if (x.size() != states_[0].size())
     fail(Status::invalid_argument, "prolonged elastics: x has " + std::to_string(x.size()) +
@@ -79,11 +95,16 @@ void ProlongedElastics::add_gradient(const Vector& x, Vector& g) const {
 }
 
 void ProlongedElastics::hessian_pattern(int* rows, int* cols) const {
+  if (galerkin_) return galerkin_->pattern(rows, cols);
   for (std::size_t k = 0; k < level_terms_.size(); ++k)
     level_terms_[k]->hessian_pattern(rows + entry_offsets_[k], cols + entry_offsets_[k]);
 }
 
 void ProlongedElastics::hessian_values(const Vector& x, bool project_psd, double* values) const {
+  if (galerkin_) {
+    prolong(x);
+    return galerkin_->values(fine_dofs_, project_psd, pinned_, values);
+  }
   // ∇²Ψ_l(x_l): the level's own shell Hessian (PSQ Algorithm 1 line 7).
   for (std::size_t k = 0; k < level_terms_.size(); ++k)
     level_terms_[k]->hessian_values(x, project_psd, values + entry_offsets_[k]);

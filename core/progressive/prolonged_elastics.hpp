@@ -7,15 +7,16 @@
 #include "energy/energy_term.hpp"
 #include "hierarchy/shell_prolongation.hpp"
 #include "problem/problem.hpp"
+#include "progressive/galerkin_hessian.hpp"
 
 namespace progsim {
 
 /// Ψ_L(P^l(x_l)) (PSQ eqs. 2 and 9). The value is the finest level's; the gradient is exact,
 /// J(x)ᵀ ∇Ψ_L(P(x)) with J = U + ∂a/∂x (shell_prolongation.hpp), so a line search on the proxy
 /// is a true descent method (PSQ eq. 10 freezes the offset: Uᵀ∇Ψ_L). The Hessian is the
-/// level's own shell Hessian ∇²Ψ_l(x_l), a preconditioner as in PSQ Algorithm 1 line 7: it
-/// costs O(|V_l|), where the Galerkin product Uᵀ∇²Ψ_L U would cost a finest-level assembly.
-/// Not thread-safe (work buffers), allocation-free after construction.
+/// level's own shell Hessian ∇²Ψ_l(x_l), a preconditioner as in PSQ Algorithm 1 line 7 that
+/// costs O(|V_l|), or the Galerkin product Uᵀ∇²Ψ_L U, which costs a finest-level assembly.
+/// Not thread-safe (work buffers); value and gradient are allocation-free after construction.
 class ProlongedElastics final : public EnergyTerm {
  public:
   /// `to_finest`: P^l; `finest_terms`: the shell potentials on the finest mesh (3 n_L DOFs);
@@ -28,11 +29,16 @@ class ProlongedElastics final : public EnergyTerm {
   ProlongedElastics(std::vector<std::shared_ptr<const ShellProlongation>> chain,
                     std::vector<std::unique_ptr<EnergyTerm>> finest_terms,
                     std::vector<std::unique_ptr<EnergyTerm>> level_terms);
+  /// The same with the Galerkin Hessian Uᵀ∇²Ψ_L U (galerkin_hessian.hpp) in place of the
+  /// level's own; `finest_rest` (n_L × 3) fixes its pattern.
+  ProlongedElastics(std::vector<std::shared_ptr<const ShellProlongation>> chain,
+                    std::vector<std::unique_ptr<EnergyTerm>> finest_terms,
+                    const Positions& finest_rest);
 
   const char* name() const override { return "prolonged_elastics"; }
   double value(const Vector& x) const override;
   void add_gradient(const Vector& x, Vector& g) const override;
-  std::size_t hessian_entry_count() const override { return entry_offsets_.back(); }
+  std::size_t hessian_entry_count() const override;
   void hessian_pattern(int* rows, int* cols) const override;
   void hessian_values(const Vector& x, bool project_psd, double* values) const override;
 
@@ -53,8 +59,9 @@ class ProlongedElastics final : public EnergyTerm {
   std::vector<std::shared_ptr<const ShellProlongation>> chain_;
   std::unique_ptr<Problem> finest_;  // never finalized: value and gradient only
   std::vector<std::unique_ptr<EnergyTerm>> level_terms_;
-  std::vector<std::size_t> entry_offsets_;  // per level term, into the Hessian entries
-  std::vector<int> pinned_;                 // finest vertices held at pinned_positions_
+  std::unique_ptr<GalerkinHessian> galerkin_;  // null: the level terms' Hessian
+  std::vector<std::size_t> entry_offsets_;     // per level term, into the Hessian entries
+  std::vector<int> pinned_;                    // finest vertices held at pinned_positions_
   Positions pinned_positions_;
   // Work buffers (sized once).
   mutable std::vector<Positions> states_;     // input of each operator of the chain

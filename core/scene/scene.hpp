@@ -80,6 +80,12 @@ enum class ProxyProlongation {
   direct,    ///< P^l (PSQ eq. 9): every finest offset rotates with one level-l face
 };
 
+/// The Newton matrix of preview steps (the proxy energy's Hessian stand-in).
+enum class ProxyHessian {
+  level,     ///< the level's own shell Hessian (PSQ Algorithm 1 line 7): O(|V_l|) per iteration
+  galerkin,  ///< Uᵀ ∇²Ψ_L U (offsets frozen, PSQ eq. 10): a finest assembly per iteration
+};
+
 /// How a scene is simulated progressively (PSQ, Zhang et al. 2023): the levels of its mesh
 /// hierarchy and how much work a preview step does.
 struct ProgressiveSettings {
@@ -91,6 +97,7 @@ struct ProgressiveSettings {
   /// Newton tolerance of preview solves (PSQ Algorithm 1 line 10); 0: the solver's tolerance.
   double preview_tolerance = 0.0;
   ProxyProlongation prolongation = ProxyProlongation::composed;
+  ProxyHessian hessian = ProxyHessian::level;
 
   /// True when the scene asks for more than one level.
   bool enabled() const { return coarse_levels > 0 || !level_vertices.empty(); }

@@ -303,7 +303,7 @@ ProgressiveSettings progressive(const Json& j) {
   const std::string where = "progressive";
   expect_keys(j, where,
               {"coarse_levels", "coarsening_ratio", "levels", "preview_iterations",
-               "preview_tolerance", "prolongation"});
+               "preview_tolerance", "prolongation", "proxy_hessian"});
   ProgressiveSettings p;
   if (j.contains("coarse_levels"))
     p.coarse_levels = integer(j.at("coarse_levels"), where + ".coarse_levels");
@@ -317,6 +317,11 @@ ProgressiveSettings progressive(const Json& j) {
   else if (prolongation != "composed")
     scene_error(where + ".prolongation",
                 "unknown '" + prolongation + "' (known: composed, direct)");
+  const std::string hessian = j.value("proxy_hessian", std::string("level"));
+  if (hessian == "galerkin")
+    p.hessian = ProxyHessian::galerkin;
+  else if (hessian != "level")
+    scene_error(where + ".proxy_hessian", "unknown '" + hessian + "' (known: level, galerkin)");
   if (j.contains("levels")) {
     const Json& levels = j.at("levels");
     if (!levels.is_array()) scene_error(where + ".levels", "must be an array of vertex counts");

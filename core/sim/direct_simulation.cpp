@@ -129,15 +129,22 @@ void DirectSimulation::pin_finest_handles(double t) {
 
 void DirectSimulation::add_elastics(Problem& problem,
                                     std::vector<std::pair<Pressure*, int>>& pressures) const {
-  ShellElastics own = make_shell_elastics(scene_, model_, !finest_);
-  pressures = own.pressures;
-  if (!finest_) {
+  if (!finest_) {  // the level's own shell energy
+    ShellElastics own = make_shell_elastics(scene_, model_, true);
+    pressures = own.pressures;
     for (auto& term : own.terms) problem.add_term(std::move(term));
     return;
   }
-  ShellElastics finest = make_shell_elastics(scene_, *finest_, true);
+  ShellElastics finest = make_shell_elastics(scene_, *finest_, true);  // Ψ_L, PSQ eq. 2
   if (finest.terms.empty()) return;
-  pressures.insert(pressures.end(), finest.pressures.begin(), finest.pressures.end());
+  pressures = finest.pressures;
+  if (scene_.progressive.hessian == ProxyHessian::galerkin) {
+    problem.add_term(std::make_unique<ProlongedElastics>(level_.to_finest, std::move(finest.terms),
+                                                         finest_->rest.vertices));
+    return;
+  }
+  ShellElastics own = make_shell_elastics(scene_, model_, false);  // the preconditioner
+  pressures.insert(pressures.end(), own.pressures.begin(), own.pressures.end());
   problem.add_term(std::make_unique<ProlongedElastics>(level_.to_finest, std::move(finest.terms),
                                                        std::move(own.terms)));
 }

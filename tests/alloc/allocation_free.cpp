@@ -104,7 +104,7 @@ TEST(AllocationFree, ProxyEnergyValueAndGradient) {
   const ProlongedElastics proxy(
       {std::make_shared<const ShellProlongation>(next_level_prolongation(h, 0)),
        std::make_shared<const ShellProlongation>(next_level_prolongation(h, 1))},
-      std::move(finest), {});
+      std::move(finest), std::vector<std::unique_ptr<EnergyTerm>>{});
   Vector x = as_dofs(h.levels[0].rest.vertices);
   for (int v = 0; v < h.levels[0].rest.num_vertices(); ++v) x[3 * v + 2] = 0.01 * (v % 7);
   Vector g = Vector::Zero(x.size());

@@ -95,6 +95,26 @@ TEST(ProgressiveSimulation, PlateBucklesTheSameWayOnEveryLevel) {
   EXPECT_LT(preview_max, coarse_max);
 }
 
+TEST(ProgressiveSimulation, GalerkinPreviewNeedsFewerIterationsForTheSameEquilibrium) {
+  Scene scene = buckling_plate(24, 1e-4, 10);
+  scene.progressive.level_vertices = {50, 160};
+  std::vector<Positions> previews;
+  std::vector<int> iterations;
+  for (ProxyHessian hessian : {ProxyHessian::level, ProxyHessian::galerkin}) {
+    scene.progressive.hessian = hessian;
+    ProgressiveSimulation psq(scene);
+    for (int s = 0; s < scene.num_steps(); ++s) psq.step();
+    ASSERT_TRUE(psq.settle_to_equilibrium(300));
+    previews.push_back(psq.positions(psq.finest()));
+    iterations.push_back(psq.records()[0].newton_iterations);
+  }
+  std::cout << "preview Newton iterations: level Hessian " << iterations[0] << ", Galerkin "
+            << iterations[1] << "\n";
+  EXPECT_LT(3 * iterations[1], iterations[0]);
+  const Positions& rest = scene.bodies[0].mesh.vertices;
+  EXPECT_LT(relative_distance(previews[1], previews[0], rest).second, 1e-3);
+}
+
 TEST(ProgressiveSimulation, CoarseLevelsEvaluateTheFinestElasticsThroughTheProxy) {
   Scene scene = curved_cantilever(8, 20);
   scene.progressive.level_vertices = {40};

@@ -105,3 +105,32 @@ TEST(ProlongedElastics, CountsFinestEvaluationsAndRejectsWrongSizes) {
   EXPECT_EQ(stats[0].gradient_evaluations, 1);
   EXPECT_THROW(c.proxy->value(Vector::Zero(x.size() + 3)), Error);
 }
+
+TEST(ProlongedElastics, GalerkinHessianIsTheFinestHessianProjectedByU) {
+  // Independent reference: dense U (the product of the per-level intrinsic matrices) and the
+  // finest terms' own Hessian at P(x), with a pinned finest vertex's rows and columns removed.
+  const TriangleMesh mesh = dome(9);
+  HierarchyOptions options;
+  options.coarse_vertex_counts = {20, 50};
+  const MeshHierarchy h = build_hierarchy(mesh, options);
+  const std::vector<std::shared_ptr<const ShellProlongation>> chain = {
+      std::make_shared<const ShellProlongation>(next_level_prolongation(h, 0)),
+      std::make_shared<const ShellProlongation>(next_level_prolongation(h, 1))};
+  ProlongedElastics proxy(chain, shell_terms(mesh, true), mesh.vertices);
+  const std::vector<int> pinned = {5};
+  proxy.pin_finest_vertices(pinned, mesh.vertices.row(5));
+  const Vector x = perturbed(h.levels[0].rest.vertices, 0.02, 6);
+  const Eigen::MatrixXd u =
+      Eigen::MatrixXd(chain[1]->intrinsic()) * Eigen::MatrixXd(chain[0]->intrinsic());
+  Eigen::MatrixXd lift = Eigen::MatrixXd::Zero(3 * u.rows(), 3 * u.cols());
+  for (int i = 0; i < u.rows(); ++i)
+    for (int j = 0; j < u.cols(); ++j) lift.block<3, 3>(3 * i, 3 * j) = u(i, j) * Mat3::Identity();
+  lift.middleRows<3>(15).setZero();  // vertex 5 is pinned
+  proxy.value(x);
+  const Vector fine = as_dofs(proxy.last_prolonged());
+  Eigen::MatrixXd fine_hessian = Eigen::MatrixXd::Zero(fine.size(), fine.size());
+  for (const auto& term : shell_terms(mesh, true))
+    fine_hessian += assembled_hessian(*term, fine, true);
+  const Eigen::MatrixXd expected = lift.transpose() * fine_hessian * lift;
+  EXPECT_LT(relative_error(assembled_hessian(proxy, x, true), expected, 1e-6), 1e-10);
+}

@@ -136,13 +136,14 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
   const Scene scene =
       parse_scene(scene_text("", R"(, "progressive": {"coarse_levels": 2, "coarsening_ratio": 3.5,
                        "preview_iterations": 4, "preview_tolerance": 1e-4,
-                       "prolongation": "direct"})"),
+                       "prolongation": "direct", "proxy_hessian": "galerkin"})"),
                   ".");
   EXPECT_EQ(scene.progressive.coarse_levels, 2);
   EXPECT_EQ(scene.progressive.coarsening_ratio, 3.5);
   EXPECT_EQ(scene.progressive.preview_iterations, 4);
   EXPECT_EQ(scene.progressive.preview_tolerance, 1e-4);
   EXPECT_EQ(scene.progressive.prolongation, ProxyProlongation::direct);
+  EXPECT_EQ(scene.progressive.hessian, ProxyHessian::galerkin);
   EXPECT_TRUE(scene.progressive.enabled());
   const Scene levels = parse_scene(scene_text("", R"(, "progressive": {"levels": [5, 9]})"), ".");
   EXPECT_EQ(levels.progressive.level_vertices, (std::vector<int>{5, 9}));
@@ -158,6 +159,8 @@ TEST(SceneJson, RejectsBadProgressiveSettings) {
   expect_scene_error(scene_text("", R"(, "progressive": {"levels": [2]})"), "too small");
   expect_scene_error(scene_text("", R"(, "progressive": {"prolongation": "cubic"})"),
                      "unknown 'cubic'");
+  expect_scene_error(scene_text("", R"(, "progressive": {"proxy_hessian": "exact"})"),
+                     "unknown 'exact'");
   expect_scene_error(scene_text("", R"(, "progressive": {"preview_iterations": 0})"),
                      "preview_iterations");
 }

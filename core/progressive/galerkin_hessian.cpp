@@ -1,0 +1,64 @@
+#include "progressive/galerkin_hessian.hpp"
+
+#include <string>
+
+#include "common/error.hpp"
+
+namespace progsim {
+namespace {
+
+/// U ⊗ I₃: each entry U_ij acts on the three coordinates of coarse vertex j.
+GalerkinHessian::SparseMatrix lifted(const ProlongationMatrix& intrinsic) {
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(3 * static_cast<std::size_t>(intrinsic.nonZeros()));
+  for (int i = 0; i < intrinsic.outerSize(); ++i)
+    for (ProlongationMatrix::InnerIterator it(intrinsic, i); it; ++it)
+      for (int d = 0; d < 3; ++d) triplets.emplace_back(3 * i + d, 3 * it.col() + d, it.value());
+  GalerkinHessian::SparseMatrix lift(3 * intrinsic.rows(), 3 * intrinsic.cols());
+  lift.setFromTriplets(triplets.begin(), triplets.end());
+  return lift;
+}
+
+}  // namespace
+
+GalerkinHessian::GalerkinHessian(const ProlongationMatrix& intrinsic, Problem& finest,
+                                 const Vector& at)
+    : finest_(finest), lift_(lifted(intrinsic)) {
+  if (lift_.rows() != finest.num_dofs() || at.size() != finest.num_dofs() ||
+      finest.num_free() != finest.num_dofs())
+    fail(Status::invalid_argument,
+         "Galerkin Hessian: the prolongation has " + std::to_string(lift_.rows()) +
+             " fine DOFs, the finest problem " + std::to_string(finest.num_dofs()) +
+             " (all of them free), the state " + std::to_string(at.size()));
+  mask_ = Eigen::VectorXd::Ones(lift_.rows());
+  pattern_ = product(at, false, {});
+}
+
+GalerkinHessian::SparseMatrix GalerkinHessian::product(const Vector& fine_x, bool project_psd,
+                                                       const std::vector<int>& pinned) {
+  mask_.setOnes();
+  for (int v : pinned) mask_.segment<3>(3 * v).setZero();
+  const SparseMatrix full = finest_.hessian(fine_x, project_psd).selfadjointView<Eigen::Lower>();
+  const SparseMatrix masked = mask_.asDiagonal() * full * mask_.asDiagonal();
+  return SparseMatrix(lift_.transpose() * masked * lift_);  // Uᵀ H U, frozen offsets
+}
+
+void GalerkinHessian::pattern(int* rows, int* cols) const {
+  std::size_t k = 0;
+  for (int c = 0; c < pattern_.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(pattern_, c); it; ++it, ++k) {
+      rows[k] = it.row();
+      cols[k] = it.col();
+    }
+}
+
+void GalerkinHessian::values(const Vector& fine_x, bool project_psd, const std::vector<int>& pinned,
+                             double* out) {
+  const SparseMatrix h = product(fine_x, project_psd, pinned);
+  if (h.nonZeros() != pattern_.nonZeros() ||
+      !std::equal(h.innerIndexPtr(), h.innerIndexPtr() + h.nonZeros(), pattern_.innerIndexPtr()))
+    fail(Status::internal, "Galerkin Hessian: the pattern of Uᵀ H U changed between evaluations");
+  std::copy(h.valuePtr(), h.valuePtr() + h.nonZeros(), out);
+}
+
+}  // namespace progsim
