@@ -142,27 +142,34 @@ void ProgressiveSimulation::refine() {
     fail(Status::out_of_range, "already at the finest level " + std::to_string(finest()) +
                                    "; there is nothing to refine");
   Timer timer;
-  const Vector start = as_dofs((*next_operator(level_))(sim_->positions()));  // PSQ eq. 7
-  if (!start.allFinite())
+  const Positions coarse = sim_->positions();
+  const ShellProlongation& next_level = *next_operator(level_);
+  const Vector target = as_dofs(next_level(coarse));  // P^l_{l+1}(x_l), PSQ eq. 7
+  if (!target.allFinite())
     fail(Status::numerical_failure,
          "refining level " + std::to_string(level_) + ": the prolonged state is not finite");
+  // With contact the level starts on the coarse surface, U x_l (every new vertex at its
+  // intrinsic anchor: the surface level l has already cleared), then moves toward P(x_l) as far
+  // as CCD allows. A simplification of PSQ §4.4's per-batch expansion: one global advance.
+  const bool contact = sim_->contact() != nullptr;
+  const Vector start = contact ? as_dofs(Positions(next_level.intrinsic() * coarse)) : target;
   std::unique_ptr<DirectSimulation> next;
   try {
     next = make_level(level_ + 1, &start, sim_->steps_taken());
   } catch (const Error& e) {
     if (e.status() != Status::intersecting) throw;
-    fail(Status::intersecting,
-         "refining level " + std::to_string(level_) + ": " + e.what() +
-             " (safe refinement with contact, PSQ §4.4, is not implemented yet)");
+    fail(Status::intersecting, "refining level " + std::to_string(level_) + ": " + e.what());
   }
-  if (!std::isfinite(next->problem().value(start)))
+  const double reached = contact ? next->advance_toward(target, 50) : 1.0;
+  if (!std::isfinite(next->problem().value(next->dofs())))
     fail(Status::unsupported, "refining level " + std::to_string(level_) +
-                                  ": the prolonged state has infinite energy (a strain limit is "
-                                  "exceeded); safe refinement, PSQ §4.4, is not implemented yet");
-  records_[level_].positions = sim_->positions();
+                                  ": the refined state has infinite energy (a strain limit is "
+                                  "exceeded); strain-limit relaxation (PSQ §4.4) is not in yet");
+  records_[level_].positions = coarse;
   sim_ = std::move(next);
   ++level_;
   records_[level_].refine_seconds += timer.seconds();
+  records_[level_].refine_reached = reached;
 }
 
 Positions ProgressiveSimulation::positions(int level) const {

@@ -22,6 +22,9 @@ struct LevelRecord {
   int converged_solves = 0;     ///< steps and settles whose Newton solve met the tolerance
   double solve_seconds = 0.0;   ///< wall time of the level's steps and settles
   double refine_seconds = 0.0;  ///< wall time to build the level's start from the coarser one
+  /// With contact: the fraction of the way from the coarse surface to the prolonged state
+  /// that refinement reached before contact stopped it (1 without contact).
+  double refine_reached = 1.0;
   double energy = 0.0;          ///< E at the level's current or last state (J)
   double gradient_norm = 0.0;   ///< ‖∇E‖ over free DOFs there
   double simulated_time = 0.0;  ///< scene time of the last solve (s)
@@ -53,10 +56,13 @@ class ProgressiveSimulation {
   /// Settles until the current level is at equilibrium (PSQ Algorithm 1: a solve that needs no
   /// Newton step) or `max_solves` solves were made; returns whether equilibrium was reached.
   bool settle_to_equilibrium(int max_solves);
-  /// Refines the current level l into l+1 with the hierarchy's P^l_{l+1} (PSQ eq. 7) and
-  /// continues there at the same scene time. Throws Error(out_of_range) at the finest level;
-  /// Error(intersecting) when the prolonged state intersects or breaks a strain limit (safe
-  /// refinement, PSQ §4.4, is not implemented yet). On Error nothing changed.
+  /// Refines the current level l into l+1 toward the hierarchy's P^l_{l+1}(x_l) (PSQ eq. 7) and
+  /// continues there at the same scene time. Without contact the level starts at P^l_{l+1}(x_l).
+  /// With contact it starts on level l's surface (U x_l: intersection-free where x_l is) and
+  /// advances toward P^l_{l+1}(x_l) in CCD-bounded rounds, so it never starts intersecting even
+  /// when the prolonged state does. Throws Error(out_of_range) at the finest level,
+  /// Error(intersecting) if the start on the coarse surface comes within a contact offset,
+  /// Error(unsupported) if it breaks a strain limit. On Error nothing changed.
   void refine();
 
   int level() const { return level_; }

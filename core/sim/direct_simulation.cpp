@@ -240,6 +240,26 @@ void DirectSimulation::update_scene(Scene scene) {
   if (scene_.mode == StepMode::quasistatic) v_.setZero();
 }
 
+double DirectSimulation::advance_toward(const Vector& target, int max_rounds) {
+  if (target.size() != x_.size())
+    fail(Status::invalid_argument, "advance_toward: the target has " +
+                                       std::to_string(target.size()) + " DOFs, the level " +
+                                       std::to_string(x_.size()));
+  double reached = 0.0;
+  for (int round = 0; round < max_rounds; ++round) {
+    script_step_ = target - x_;
+    for (int d = 0; d < problem_->num_dofs(); ++d)
+      if (problem_->is_fixed(d)) script_step_[d] = 0.0;  // handles follow their script
+    if (script_step_.isZero(0.0)) return 1.0;
+    const double alpha = contact_ ? contact_->max_step(x_, script_step_) : 1.0;
+    x_ += std::min(alpha, 1.0) * script_step_;
+    reached += std::min(alpha, 1.0) * (1.0 - reached);
+    if (alpha >= 1.0) return 1.0;
+    if (alpha < 1e-3) break;  // blocked: the solve that follows finds the way
+  }
+  return reached;
+}
+
 StepRecord DirectSimulation::step() {
   return solve_at((steps_taken_ + 1) * scene_.time_step, true);
 }

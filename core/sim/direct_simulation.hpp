@@ -48,6 +48,12 @@ class DirectSimulation {
   /// the line search accepted).
   StepRecord step();
 
+  /// Moves the free DOFs in a straight line toward `target` (3|V|) as far as contact allows:
+  /// up to `max_rounds` rounds, each advancing by the step additive CCD clears (C-IPC Alg. 1),
+  /// so the state stays intersection-free and outside every contact offset. Without contact
+  /// it moves all the way. Returns the fraction of the way reached (1: at the target).
+  double advance_toward(const Vector& target, int max_rounds);
+
   /// Solves again at the current time with the same loads (no time advance, friction not
   /// re-lagged): reaches equilibrium after a refinement or a parameter change.
   StepRecord settle();

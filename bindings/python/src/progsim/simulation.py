@@ -540,8 +540,8 @@ class Simulation(NativeObject):
 
         Raises:
             OutOfRangeError: already at the finest level (the state is unchanged).
-            IntersectingError: the prolonged state intersects (safe refinement with contact,
-                PSQ §4.4, is not in this version); the state is unchanged.
+            IntersectingError: with contact, the finer level's start on the coarse surface
+                comes within a contact offset; the state is unchanged.
         """
         self._run(lib.ps_sim_refine, progress=progress)
 

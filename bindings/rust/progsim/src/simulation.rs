@@ -267,9 +267,9 @@ impl<'h> Simulation<'h> {
     /// that later steps run on the finer level (previews below the finest level).
     ///
     /// # Errors
-    /// [`Status::OutOfRange`] at the finest level; [`Status::Intersecting`] when the prolonged
-    /// state intersects (safe refinement with contact is not in this version). The state is
-    /// unchanged on error.
+    /// [`Status::OutOfRange`] at the finest level; [`Status::Intersecting`] when, with contact,
+    /// the finer level's start on the coarse surface comes within a contact offset. The state
+    /// is unchanged on error.
     pub fn refine(&mut self) -> Result<()> {
         let raw = self.handle()?;
         // SAFETY: live simulation.
