@@ -44,6 +44,11 @@ int run(const RunOptions& opt) {
   // Everything is loaded and validated before the output folder is touched, so bad input
   // leaves nothing half-written.
   DirectSimulation sim(load_scene_file(opt.scene_path));
+  if (sim.scene().progressive.enabled())
+    std::fprintf(stderr,
+                 "progsim run: solving %s directly on its finest mesh; its progressive levels are "
+                 "used by `progsim accuracy`\n",
+                 sim.scene().name.c_str());
   const int steps = opt.steps > 0 ? opt.steps : sim.scene().num_steps();
   const fs::path dir(opt.out_dir);
   fs::create_directories(dir);
