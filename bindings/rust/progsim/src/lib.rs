@@ -45,6 +45,7 @@
 
 #![warn(missing_docs)]
 
+mod accuracy;
 mod def;
 mod error;
 mod hierarchy;
@@ -57,6 +58,7 @@ use std::sync::OnceLock;
 
 use progsim_sys as sys;
 
+pub use accuracy::{Accuracy, AccuracyRow, Method};
 pub use def::{Effect, Effects, HandleMotion, HierarchyDef, LevelStats, Mode, SimulationDef};
 pub use error::{Error, Result, Status};
 pub use hierarchy::Hierarchy;

@@ -1,0 +1,145 @@
+//! [`Accuracy`]: what accuracy costs in time on one scene, progressive (PSQ) against direct
+//! solves on every level, each compared with the converged finest result.
+
+use std::path::Path;
+use std::ptr::{self, NonNull};
+
+use progsim_sys as sys;
+
+use crate::error::check_thread;
+use crate::{c_path, check_version, count_from, not_in_callback, Error, Result, Status};
+
+/// How a row's result was computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Preview on the coarsest level, then refinement level by level (PSQ).
+    Progressive,
+    /// The level solved on its own with the same solver.
+    Direct,
+}
+
+/// One level's result, as `progsim accuracy` writes it to `accuracy.csv`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AccuracyRow {
+    /// How it was computed.
+    pub method: Method,
+    /// 0 = coarsest.
+    pub level: usize,
+    /// Vertices of the level's mesh.
+    pub vertices: usize,
+    /// Newton iterations on the level.
+    pub newton_iterations: usize,
+    /// Wall time, s: progressive, from the start until this level's equilibrium (coarser
+    /// levels and refinements included); direct, the level's own solve over the load script.
+    pub seconds: f64,
+    /// Wall time building the level's start from the coarser level, s.
+    pub refine_seconds: f64,
+    /// RMS distance to the converged finest result over the bounding-box diagonal.
+    pub error_rms: f64,
+    /// Maximum distance to the converged finest result over the bounding-box diagonal.
+    pub error_max: f64,
+}
+
+/// The results of one accuracy run. Owns a C `ps_accuracy`, destroyed on drop. `Send` but not
+/// `Sync` (calls on one handle must not overlap).
+pub struct Accuracy {
+    raw: NonNull<sys::ps_accuracy>,
+    rows: Vec<AccuracyRow>,
+}
+
+// SAFETY: the results are immutable C data with no thread affinity; not Sync keeps calls on
+// the handle (which rewrite the thread's last error) from overlapping.
+unsafe impl Send for Accuracy {}
+
+impl Accuracy {
+    /// Runs the scene file (which needs a `"progressive"` section with coarse levels)
+    /// progressively and directly on every level. Long: minutes for large meshes.
+    ///
+    /// # Errors
+    /// [`Status::Io`], [`Status::InvalidScene`] (a malformed scene, or one without coarse
+    /// levels), [`Status::Unsupported`] (a dynamic scene), [`Status::Intersecting`].
+    pub fn run(scene_path: impl AsRef<Path>) -> Result<Accuracy> {
+        check_version()?;
+        not_in_callback()?;
+        let path = c_path(scene_path.as_ref())?;
+        let mut out = ptr::null_mut();
+        // SAFETY: path is valid for the call; no progress callback; out receives an owned
+        // handle.
+        let status = unsafe {
+            sys::ps_accuracy_run_scene_file(path.as_ptr(), None, ptr::null_mut(), &mut out)
+        };
+        check_thread(status)?;
+        let raw = NonNull::new(out).ok_or_else(|| {
+            Error::new(Status::Internal, "ps_accuracy_run_scene_file returned no handle")
+        })?;
+        let mut accuracy = Accuracy { raw, rows: Vec::new() };
+        accuracy.rows = accuracy.read_rows()?;
+        Ok(accuracy)
+    }
+
+    /// The rows: progressive levels first (coarsest first), then the direct solves.
+    pub fn rows(&self) -> &[AccuracyRow] {
+        &self.rows
+    }
+
+    /// Writes `accuracy.csv`, `accuracy.md`, `error_vs_time.png` and `error_by_level.png`
+    /// into `dir` (created).
+    ///
+    /// # Errors
+    /// [`Status::Io`] naming a file that cannot be written.
+    pub fn write(&self, dir: impl AsRef<Path>) -> Result<()> {
+        not_in_callback()?;
+        let dir = c_path(dir.as_ref())?;
+        // SAFETY: live handle; dir is valid for the call.
+        check_thread(unsafe { sys::ps_accuracy_write(self.raw.as_ptr(), dir.as_ptr()) })
+    }
+
+    fn read_rows(&self) -> Result<Vec<AccuracyRow>> {
+        let mut count = 0i32;
+        // SAFETY: live handle; count outlives the call.
+        check_thread(unsafe { sys::ps_accuracy_num_rows(self.raw.as_ptr(), &mut count) })?;
+        (0..count).map(|index| self.read_row(index)).collect()
+    }
+
+    fn read_row(&self, index: i32) -> Result<AccuracyRow> {
+        let mut raw = sys::ps_accuracy_row {
+            method: sys::PS_METHOD_PROGRESSIVE,
+            level: 0,
+            vertices: 0,
+            newton_iterations: 0,
+            seconds: 0.0,
+            refine_seconds: 0.0,
+            error_rms: 0.0,
+            error_max: 0.0,
+        };
+        // SAFETY: live handle; raw outlives the call.
+        check_thread(unsafe { sys::ps_accuracy_get_row(self.raw.as_ptr(), index, &mut raw) })?;
+        Ok(AccuracyRow {
+            method: if raw.method == sys::PS_METHOD_PROGRESSIVE {
+                Method::Progressive
+            } else {
+                Method::Direct
+            },
+            level: count_from(raw.level),
+            vertices: count_from(raw.vertices),
+            newton_iterations: count_from(raw.newton_iterations),
+            seconds: raw.seconds,
+            refine_seconds: raw.refine_seconds,
+            error_rms: raw.error_rms,
+            error_max: raw.error_max,
+        })
+    }
+}
+
+impl Drop for Accuracy {
+    fn drop(&mut self) {
+        // SAFETY: owned handle, destroyed once.
+        unsafe { sys::ps_accuracy_destroy(self.raw.as_ptr()) }
+    }
+}
+
+impl std::fmt::Debug for Accuracy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Accuracy").field("rows", &self.rows).finish()
+    }
+}

@@ -1,0 +1,40 @@
+//! The accuracy-vs-time report through Rust, on the bundled plate-buckling scene.
+
+mod common;
+
+use common::repo_path;
+use progsim::{Accuracy, Method, Status};
+
+#[test]
+fn plate_rows_errors_and_files() {
+    let accuracy = Accuracy::run(repo_path("scenes/psq_plate_buckling.json")).unwrap();
+    let rows = accuracy.rows();
+    let kinds: Vec<(Method, usize)> = rows.iter().map(|r| (r.method, r.level)).collect();
+    assert_eq!(
+        kinds,
+        vec![
+            (Method::Progressive, 0),
+            (Method::Progressive, 1),
+            (Method::Progressive, 2),
+            (Method::Direct, 0),
+            (Method::Direct, 1),
+            (Method::Direct, 2),
+        ]
+    );
+    assert_eq!(rows[2].error_max, 0.0); // the converged finest result itself
+    assert!(rows[0].error_max > 0.0 && rows[0].error_max < 0.1);
+    assert!(rows[0].seconds < rows[2].seconds);
+    assert_eq!(rows[5].vertices, 625);
+    let dir = std::env::temp_dir().join(format!("progsim_rust_accuracy_{}", std::process::id()));
+    accuracy.write(&dir).unwrap();
+    assert!(dir.join("accuracy.csv").is_file());
+    assert!(dir.join("error_vs_time.png").is_file());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn scenes_without_levels_are_refused() {
+    let error = Accuracy::run(repo_path("scenes/hanging_cloth.json")).unwrap_err();
+    assert_eq!(error.code, Status::InvalidScene);
+    assert!(error.message.contains("coarse levels"), "{}", error.message);
+}
