@@ -70,13 +70,18 @@ std::string next_off_token(std::istream& in) {
 /// CGAL's OFF reader allocates the element counts of the header before reading any element,
 /// so a corrupt header could claim gigabytes. Rejects counts that the file is too short to
 /// hold: in text, a vertex takes at least 6 bytes ("0 0 0\n") and a face at least 2 ("0\n").
-/// Headers this check does not understand (binary, nOFF) are left to CGAL.
+/// Binary OFF is refused; nOFF headers are left to CGAL.
 void check_off_header_counts(const std::string& path) {
   std::ifstream in(path);
   const std::string keyword = next_off_token(in);
   if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0 || keyword[0] == 'n')
     return;
   const std::string vertices = next_off_token(in);
+  // CGAL's binary OFF header parser overflows int on corrupt counts (found by the fuzzer).
+  if (vertices == "BINARY")
+    fail(Status::io_error, path +
+                               ": binary OFF is not supported; save the mesh as text OFF, "
+                               "OBJ or PLY");
   const std::string faces = next_off_token(in);
   std::uintmax_t nv = 0, nf = 0;
   if (std::from_chars(vertices.data(), vertices.data() + vertices.size(), nv).ec != std::errc() ||

@@ -189,6 +189,12 @@ TEST_F(MeshIo, RejectsAnOffHeaderClaimingMoreThanTheFileHolds) {
   expect_error([&] { read_mesh(path); }, Status::io_error, {"huge.off", "2000000000 vertices"});
 }
 
+TEST_F(MeshIo, RefusesBinaryOff) {
+  // CGAL's binary OFF header parser overflows int on a corrupt count (found by the fuzzer).
+  const std::string path = write("binary.off", std::string("OFF BINARY\n") + "\x44\x66\x66\x44");
+  expect_error([&] { read_mesh(path); }, Status::io_error, {"binary.off", "binary OFF"});
+}
+
 TEST_F(MeshIo, NeverCrashesOnTruncatedOrScrambledFiles) {
   // Every prefix length class and random byte flips of valid files: read_mesh either returns
   // a mesh whose indices are in range or throws progsim::Error, nothing else.
