@@ -23,20 +23,11 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommand& options) {
   return cmd;
 }
 
-namespace {
-
-bool draw_progress(void* user, double fraction, const char*) {
-  static_cast<ProgressBar*>(user)->update(static_cast<int>(fraction * 100.0));
-  return true;
-}
-
-}  // namespace
-
 int run_accuracy_command(const AccuracyCommand& options) {
   const Scene scene = load_scene_file(options.scene_path);
   ProgressBar bar("accuracy", 100);
   const AccuracyReport report =
-      run_accuracy(scene, options.max_settles, options.quiet ? nullptr : draw_progress, &bar);
+      run_accuracy(scene, options.max_settles, options.quiet ? nullptr : draw_percent, &bar);
   if (!options.quiet) bar.finish();
   write_accuracy_report(report, options.out_dir);
   std::printf("%s", accuracy_markdown(report).c_str());

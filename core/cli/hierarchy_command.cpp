@@ -27,15 +27,6 @@ CLI::App* add_hierarchy_command(CLI::App& app, HierarchyCommand& options) {
   return cmd;
 }
 
-namespace {
-
-bool draw_progress(void* user, double fraction, const char*) {
-  static_cast<ProgressBar*>(user)->update(static_cast<int>(fraction * 100.0));
-  return true;
-}
-
-}  // namespace
-
 int run_hierarchy_command(const HierarchyCommand& options) {
   const TriangleMesh mesh = read_mesh(options.mesh_path);
   HierarchyOptions build;
@@ -48,7 +39,7 @@ int run_hierarchy_command(const HierarchyCommand& options) {
   ProgressBar bar("hierarchy", 100);
   const Timer timer;
   const MeshHierarchy hierarchy =
-      build_hierarchy(mesh, build, options.quiet ? nullptr : draw_progress, &bar);
+      build_hierarchy(mesh, build, options.quiet ? nullptr : draw_percent, &bar);
   const double seconds = timer.seconds();
   if (!options.quiet) bar.finish();
   save_hierarchy(hierarchy, options.out_path);

@@ -41,4 +41,9 @@ void ProgressBar::finish() {
   if (interactive_) std::fprintf(stderr, "\n");
 }
 
+bool draw_percent(void* bar, double fraction, const char*) {
+  static_cast<ProgressBar*>(bar)->update(static_cast<int>(fraction * 100.0));
+  return true;
+}
+
 }  // namespace progsim::cli

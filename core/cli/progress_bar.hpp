@@ -23,4 +23,8 @@ class ProgressBar {
   double start_seconds_;
 };
 
+/// A core progress callback (fraction in [0, 1]) that draws on the ProgressBar `bar` (of 100
+/// units); never cancels.
+bool draw_percent(void* bar, double fraction, const char* phase);
+
 }  // namespace progsim::cli
