@@ -7,7 +7,6 @@
 #include "common/error.hpp"
 #include "common/parallel.hpp"
 #include "common/timer.hpp"
-#include "contact/additive_ccd.hpp"
 #include "contact/barrier.hpp"
 #include "contact/edge_edge_mollifier.hpp"
 #include "energy/psd_projection.hpp"
@@ -24,12 +23,6 @@ constexpr double kSmallGapFraction = 0.01;
 constexpr double kMaxStiffnessGrowth = 1e8;
 
 }  // namespace
-
-struct ContactPotential::Pair {
-  enum class Kind { vertex_face, edge_edge, ground } kind;
-  std::array<int, 4> vertices;  ///< collision vertex indices; −1 unused (ground)
-  double offset;                ///< ξ = sum of the two sides' offsets (m)
-};
 
 ContactPotential::ContactPotential(CollisionMesh mesh, double dhat, double stiffness,
                                    std::optional<GroundPlane> ground)
@@ -60,53 +53,17 @@ void ContactPotential::set_obstacle_positions(const Positions& positions) {
   obstacle_positions_ = positions;
 }
 
-namespace {
-
-Vec12 stencil_positions(const std::array<int, 4>& vertices, const Positions& p) {
-  Vec12 xs = Vec12::Zero();
-  for (int k = 0; k < 4; ++k)
-    if (vertices[k] >= 0) xs.segment<3>(3 * k) = p.row(vertices[k]).transpose();
-  return xs;
-}
-
-}  // namespace
-
 int ContactPotential::num_items() const {
   return static_cast<int>(candidates_.size()) + (ground_ ? mesh_.num_shell_vertices : 0);
 }
 
 ContactPotential::Pair ContactPotential::pair(int k) const {
-  const int num_vf = static_cast<int>(candidates_.vertex_face.size());
-  const int num_ee = static_cast<int>(candidates_.edge_edge.size());
-  if (k < num_vf) {
-    const auto [v, f] = candidates_.vertex_face[k];
-    const auto face = mesh_.faces.row(f);
-    return {Pair::Kind::vertex_face,
-            {v, face[0], face[1], face[2]},
-            mesh_.vertex_offset[v] + mesh_.vertex_offset[face[0]]};
-  }
-  if (k < num_vf + num_ee) {
-    const auto [a, b] = candidates_.edge_edge[k - num_vf];
-    const auto& ea = mesh_.edges[a];
-    const auto& eb = mesh_.edges[b];
-    return {Pair::Kind::edge_edge,
-            {ea[0], ea[1], eb[0], eb[1]},
-            mesh_.vertex_offset[ea[0]] + mesh_.vertex_offset[eb[0]]};
-  }
-  const int v = k - num_vf - num_ee;
-  return {Pair::Kind::ground, {v, -1, -1, -1}, mesh_.vertex_offset[v]};
-}
-
-double ContactPotential::pair_distance_squared(const Pair& pair, const Vec12& xs,
-                                               ClosestPair* closest) const {
-  if (pair.kind == Pair::Kind::ground) {
-    const double signed_distance = ground_->normal.dot(xs.head<3>()) - ground_->height;
-    return signed_distance > 0.0 ? signed_distance * signed_distance : 0.0;  // below: touching
-  }
-  const ClosestPair c =
-      pair.kind == Pair::Kind::vertex_face ? classify_point_triangle(xs) : classify_edge_edge(xs);
-  if (closest) *closest = c;
-  return distance_squared(xs, c);
+  const int num_candidates = static_cast<int>(candidates_.size());
+  Pair p = k < num_candidates ? candidate_pair(mesh_, candidates_, k)
+                              : ground_pair(mesh_, k - num_candidates);
+  if (!lowered_.empty())
+    if (const auto it = lowered_.find(key_of(p)); it != lowered_.end()) p.offset = it->second;
+  return p;
 }
 
 void ContactPotential::distance_squared_derivatives_of(const Pair& pair, const Vec12& xs,
@@ -127,7 +84,7 @@ double ContactPotential::mollifier_threshold_of(const Pair& pair) const {
 double ContactPotential::pair_energy(const Pair& pair, const Vec12& xs, Vec12* grad,
                                      Mat12* hess) const {
   ClosestPair closest{};
-  const double d2 = pair_distance_squared(pair, xs, &closest);
+  const double d2 = pair_distance_squared(pair, xs, ground(), &closest);
   const double s = barrier_argument(d2, pair.offset);
   const double s_hat = barrier_activation(pair.offset, dhat_);
   if (s <= 0.0) return std::numeric_limits<double>::infinity();
@@ -179,7 +136,7 @@ void ContactPotential::measure_distances(const Positions& positions) const {
   for (int k = 0; k < n; ++k) {
     const Pair p = pair(k);
     distances_squared_[k] =
-        pair_distance_squared(p, stencil_positions(p.vertices, positions), nullptr);
+        pair_distance_squared(p, stencil_positions(p.vertices, positions), ground());
   }
 }
 
@@ -302,17 +259,7 @@ double ContactPotential::ccd(const Positions& p0, const Positions& p1) {
     const Pair p = pair(k);
     const Vec12 xs = stencil_positions(p.vertices, p0);
     const Vec12 dx = stencil_positions(p.vertices, p1) - xs;
-    double t = 1.0;
-    if (p.kind == Pair::Kind::ground) {
-      const double approach = -ground_->normal.dot(dx.head<3>());
-      const double gap = ground_->normal.dot(xs.head<3>()) - ground_->height - p.offset;
-      if (approach > 0.0) t = std::min(1.0, (1.0 - kCcdRescaling) * gap / approach);
-    } else if (p.kind == Pair::Kind::vertex_face) {
-      t = additive_ccd_point_triangle(xs, dx, p.offset, kCcdRescaling, 1.0);
-    } else {
-      t = additive_ccd_edge_edge(xs, dx, p.offset, kCcdRescaling, 1.0);
-    }
-    alpha = std::min(alpha, t);
+    alpha = std::min(alpha, pair_safe_step(p, xs, dx, p.offset, kCcdRescaling, ground()));
   }
   return alpha;
 }
@@ -378,6 +325,34 @@ void ContactPotential::check_separated(const Vector& x) {
   fail(Status::intersecting, message.str());
 }
 
+std::size_t ContactPotential::PairKeyHash::operator()(const PairKey& key) const {
+  std::size_t h = 0;
+  for (int v : key) h = h * 0x9E3779B97F4A7C15ull + static_cast<std::size_t>(v + 1);
+  return h;
+}
+
+ContactPotential::PairKey ContactPotential::key_of(const Pair& pair) {
+  return {static_cast<int>(pair.kind), pair.vertices[0], pair.vertices[1], pair.vertices[2],
+          pair.vertices[3]};
+}
+
+int ContactPotential::fit_offsets(const Vector& x) {
+  const auto previous = std::move(lowered_);
+  lowered_.clear();  // pair() gives the full offsets below
+  gather_positions(x, positions_);
+  find_candidates(mesh_, positions_, positions_, 2.0 * mesh_.max_offset(), candidates_);
+  for (int k = 0; k < num_items(); ++k) {
+    const Pair p = pair(k);
+    const double d =
+        std::sqrt(pair_distance_squared(p, stencil_positions(p.vertices, positions_), ground()));
+    const auto before = previous.find(key_of(p));
+    const double now = before != previous.end() ? before->second : p.offset;
+    const double allowed = now < d ? now + 0.5 * (d - now) : 0.8 * d;
+    if (p.offset > allowed) lowered_.emplace(key_of(p), allowed);
+  }
+  return reduced_offsets();
+}
+
 std::vector<ContactPoint> ContactPotential::contact_points(const Vector& x) const {
   gather_positions(x, positions_);
   std::vector<ContactPoint> points;
@@ -392,7 +367,7 @@ std::vector<ContactPoint> ContactPotential::contact_points(const Vector& x) cons
     ContactPoint c{p.vertices, Eigen::Vector4d(1, 0, 0, 0), ground_ ? ground_->normal : Vec3(), 0.0,
                    mu};
     ClosestPair closest{};
-    const double d2 = pair_distance_squared(p, xs, &closest);
+    const double d2 = pair_distance_squared(p, xs, ground(), &closest);
     if (p.kind != Pair::Kind::ground) {
       c.weights = closest_point_weights(xs, closest);
       Vec3 r = Vec3::Zero();

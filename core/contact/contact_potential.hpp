@@ -4,23 +4,18 @@
 /// codimensional offsets and additive CCD of C-IPC, Li et al. 2021, §4).
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "contact/broad_phase.hpp"
 #include "contact/collision_mesh.hpp"
+#include "contact/contact_pair.hpp"
 #include "contact/contact_stats.hpp"
 #include "contact/primitive_distance.hpp"
 #include "energy/changing_pattern_term.hpp"
 #include "solve/step_filter.hpp"
 
 namespace progsim {
-
-/// An analytic ground for contact: the half-space normal·x ≥ height.
-struct GroundPlane {
-  Vec3 normal = Vec3::UnitY();  ///< unit
-  double height = 0.0;          ///< m
-  double friction = 0.0;        ///< μ
-};
 
 /// One active contact, as friction needs it (IPC §5): the 4 stencil vertices (−1 unused), the
 /// weights w with r = Σ w_k x_k the vector between the closest points, the unit normal r/‖r‖,
@@ -71,10 +66,20 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   /// Throws Error(intersecting) naming the closest pair if any pair of x is at or inside its
   /// contact offset (a scene that starts intersecting or touching).
   void check_separated(const Vector& x);
+  /// Offset homotopy for a start inside some contact offsets (a refined level whose split
+  /// patches are not yet open, PSQ §4.4.3): each pair nearer than its offset ξ gets a lowered
+  /// offset of its own, 80% of its distance on the first call, then (after a solve has pushed
+  /// it open) halfway from its current offset to its distance; every other pair keeps its ξ.
+  /// Call after each solve until it returns 0; returns how many pairs still have a lowered one.
+  int fit_offsets(const Vector& x);
+  /// Pairs whose offset fit_offsets() lowered (0: the full offsets hold).
+  int reduced_offsets() const { return static_cast<int>(lowered_.size()); }
   /// The active contacts at x (for lagged friction).
   std::vector<ContactPoint> contact_points(const Vector& x) const;
 
   double dhat() const { return dhat_; }
+  /// The ground, or nullptr.
+  const GroundPlane* ground() const { return ground_ ? &*ground_ : nullptr; }
   double stiffness() const { return stiffness_; }
   void set_stiffness(double kappa) { stiffness_ = kappa; }
   const CollisionMesh& mesh() const { return mesh_; }
@@ -86,12 +91,11 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   static double stiffness_for_force(double force, double dhat, double offset);
 
  private:
-  struct Pair;
+  using Pair = ContactPair;
   /// Items are the vertex–face candidates, then the edge–edge ones, then (with a ground)
   /// every shell vertex against the ground.
   int num_items() const;
   Pair pair(int item) const;
-  double pair_distance_squared(const Pair& pair, const Vec12& xs, ClosestPair* closest) const;
   void distance_squared_derivatives_of(const Pair& pair, const Vec12& xs,
                                        const ClosestPair& closest, Vec12& grad, Mat12& hess) const;
   double mollifier_threshold_of(const Pair& pair) const;
@@ -111,6 +115,13 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   std::string describe(int item) const;
 
   CollisionMesh mesh_;
+  /// A pair's identity: its kind and stencil.
+  using PairKey = std::array<int, 5>;
+  struct PairKeyHash {
+    std::size_t operator()(const PairKey& key) const;
+  };
+  static PairKey key_of(const Pair& pair);
+  std::unordered_map<PairKey, double, PairKeyHash> lowered_;  // pair → offset, fit_offsets()
   double dhat_;
   double stiffness_;
   double initial_stiffness_;
