@@ -98,6 +98,10 @@ struct ProgressiveSettings {
   double preview_tolerance = 0.0;
   ProxyProlongation prolongation = ProxyProlongation::composed;
   ProxyHessian hessian = ProxyHessian::level;
+  /// Quasistatic steps add PSQ eq. 1's proximal term ½h⁻²‖x − xᵗ‖²_M (eq. 3 with the level's
+  /// lumped masses): an artificial gradient flow that keeps the Newton matrix definite for free
+  /// bodies (a cloth dropped on a sphere). On every level and in the direct baseline alike.
+  bool proximal = false;
 
   /// True when the scene asks for more than one level.
   bool enabled() const { return coarse_levels > 0 || !level_vertices.empty(); }

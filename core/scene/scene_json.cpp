@@ -298,12 +298,12 @@ void solver(const Json& j, Scene& scene) {
 }
 
 /// The "progressive" section: {"coarse_levels": k, "coarsening_ratio": r} or {"levels": [...]}
-/// plus "preview_iterations".
+/// plus the preview and proxy options and "proximal".
 ProgressiveSettings progressive(const Json& j) {
   const std::string where = "progressive";
   expect_keys(j, where,
               {"coarse_levels", "coarsening_ratio", "levels", "preview_iterations",
-               "preview_tolerance", "prolongation", "proxy_hessian"});
+               "preview_tolerance", "prolongation", "proxy_hessian", "proximal"});
   ProgressiveSettings p;
   if (j.contains("coarse_levels"))
     p.coarse_levels = integer(j.at("coarse_levels"), where + ".coarse_levels");
@@ -311,6 +311,10 @@ ProgressiveSettings progressive(const Json& j) {
   p.preview_tolerance = number_or(j, "preview_tolerance", p.preview_tolerance, where);
   if (j.contains("preview_iterations"))
     p.preview_iterations = integer(j.at("preview_iterations"), where + ".preview_iterations");
+  if (j.contains("proximal")) {
+    if (!j.at("proximal").is_boolean()) scene_error(where + ".proximal", "must be true or false");
+    p.proximal = j.at("proximal").get<bool>();
+  }
   const std::string prolongation = j.value("prolongation", std::string("composed"));
   if (prolongation == "direct")
     p.prolongation = ProxyProlongation::direct;

@@ -40,12 +40,16 @@ double reference_force(const Scene& scene, const ShellModel& model) {
 
 }  // namespace
 
+std::vector<double> shell_contact_offsets(const ShellModel& model) {
+  return vertex_max_of_faces(model, half_thickness);
+}
+
 std::unique_ptr<ContactPotential> make_contact_potential(const Scene& scene,
                                                          const ShellModel& model,
                                                          const ObstacleScript& obstacles) {
-  CollisionMesh mesh = build_collision_mesh(
-      model.rest.vertices, model.rest.faces, vertex_max_of_faces(model, half_thickness),
-      vertex_max_of_faces(model, friction_of), obstacles.surfaces());
+  CollisionMesh mesh =
+      build_collision_mesh(model.rest.vertices, model.rest.faces, shell_contact_offsets(model),
+                           vertex_max_of_faces(model, friction_of), obstacles.surfaces());
   std::optional<GroundPlane> ground;
   if (scene.ground.enabled)
     ground = GroundPlane{scene.ground.normal, scene.ground.height, scene.ground.friction};

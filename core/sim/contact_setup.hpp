@@ -12,6 +12,10 @@
 
 namespace progsim {
 
+/// Per shell vertex its contact offset ξ = t/2, the largest over the vertex's faces (C-IPC
+/// codimensional thickness).
+std::vector<double> shell_contact_offsets(const ShellModel& model);
+
 /// The contact barrier over the shell, the obstacles and the ground. Each shell vertex gets the
 /// offset ξ = t/2 of its body (C-IPC codimensional thickness), obstacles 0. κ is the scene's
 /// contact.stiffness, or (0) the stiffness at which a pair at half the gap d̂ resists the

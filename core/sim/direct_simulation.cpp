@@ -41,29 +41,47 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
   total.timings = timings;
 }
 
+/// Face pairs of the shell at x and the obstacles (where `contact` holds them) that cross, by
+/// CGAL's exact predicates; at most max_pairs (0: all).
+std::vector<FacePair> crossing_faces(const ContactPotential& contact, const Vector& x,
+                                     std::size_t max_pairs) {
+  Positions all(contact.mesh().num_vertices(), 3);
+  all.topRows(contact.mesh().num_shell_vertices) = as_positions(x);
+  all.bottomRows(contact.mesh().num_obstacle_vertices) = contact.obstacle_positions();
+  return intersecting_faces(all, contact.mesh().faces, max_pairs);
+}
+
 }  // namespace
 
-DirectSimulation::DirectSimulation(Scene scene) : DirectSimulation(std::move(scene), {}) {}
+std::size_t DirectSimulation::intersecting_face_pairs() const {
+  if (contact_) return crossing_faces(*contact_, x_, 0).size();
+  return intersecting_faces(Positions(as_positions(x_)), model_.rest.faces).size();
+}
 
-DirectSimulation::DirectSimulation(Scene scene, SimulationLevel level, const Vector* start,
-                                   int steps_taken)
+DirectSimulation::DirectSimulation(Scene scene) : DirectSimulation(std::move(scene), {}, {}) {}
+
+DirectSimulation::DirectSimulation(Scene scene, SimulationLevel level, LevelStart start)
     : scene_(validated(std::move(scene))),
       level_(std::move(level)),
       obstacles_(std::make_unique<ObstacleScript>(scene_)),
-      steps_taken_(steps_taken) {
+      steps_taken_(start.steps_taken),
+      fit_offsets_(start.inside_offsets),
+      start_obstacles_(std::move(start.obstacles)),
+      start_stiffness_(start.contact_stiffness) {
   if (level_.hierarchy && !level_.is_finest() && scene_.mode == StepMode::dynamic)
     fail(Status::unsupported, scene_.name +
                                   ": dynamic scenes on coarse levels (Progressive Dynamics) are "
                                   "not implemented; use the quasistatic mode");
   build_models();
   const int n = model_.rest.num_vertices();
-  if (start && start->size() != 3 * n)
-    fail(Status::invalid_argument, "the start state has " + std::to_string(start->size()) +
+  const bool given = start.positions.size() > 0;
+  if (given && start.positions.size() != 3 * n)
+    fail(Status::invalid_argument, "the start state has " + std::to_string(start.positions.size()) +
                                        " DOFs, level " + std::to_string(level_.level) + " has " +
                                        std::to_string(3 * n));
-  x_ = start ? *start : as_dofs(model_.rest.vertices);
+  x_ = given ? std::move(start.positions) : Vector(as_dofs(model_.rest.vertices));
   v_ = Vector::Zero(x_.size());
-  if (scene_.mode == StepMode::dynamic && !start)
+  if (scene_.mode == StepMode::dynamic && !given)
     for (std::size_t b = 0; b < scene_.bodies.size(); ++b)
       for (int v = model_.vertex_offset[b]; v < model_.vertex_offset[b + 1]; ++v)
         v_.segment<3>(3 * v) = scene_.bodies[b].velocity;
@@ -100,7 +118,7 @@ void DirectSimulation::build_problem() {
   Inertia* inertia = nullptr;
   std::vector<std::pair<Pressure*, int>> pressures;
   const EffectSet& fx = scene_.effects;
-  if (scene_.mode == StepMode::dynamic)
+  if (scene_.mode == StepMode::dynamic || scene_.progressive.proximal)  // PSQ eq. 1 / 3
     inertia = &problem->add_term(std::make_unique<Inertia>(model_.vertex_masses, scene_.time_step));
   add_elastics(*problem, pressures);
   ContactPotential* contact = fx.has(Effect::contact) ? &add_contact(*problem) : nullptr;
@@ -118,6 +136,7 @@ void DirectSimulation::build_problem() {
   pressures_ = std::move(pressures);
   contact_ = contact;
   friction_ = friction;
+  friction_lagged_ = false;
   strain_limit_ = strain_limit;
   proxy_ = dynamic_cast<ProlongedElastics*>(problem_->find_term("prolonged_elastics"));
   pin_finest_handles(time());
@@ -151,19 +170,21 @@ void DirectSimulation::add_elastics(Problem& problem,
 
 ContactPotential& DirectSimulation::add_contact(Problem& problem) {
   auto contact = make_contact_potential(scene_, model_, *obstacles_);
-  if (contact_ && contact_->obstacle_positions().rows() == contact->obstacle_positions().rows())
+  const Eigen::Index num_obstacle = contact->obstacle_positions().rows();
+  if (contact_ && contact_->obstacle_positions().rows() == num_obstacle)
     contact->set_obstacle_positions(contact_->obstacle_positions());
+  else if (start_obstacles_.rows() == num_obstacle && num_obstacle > 0)
+    contact->set_obstacle_positions(start_obstacles_);  // where the previous level left them
   else
     contact->set_obstacle_positions(obstacles_->at(time()));
-  if (contact_) contact->set_stiffness(std::max(contact->stiffness(), contact_->stiffness()));
-  Positions all(contact->mesh().num_vertices(), 3);
-  all.topRows(contact->mesh().num_shell_vertices) = as_positions(x_);
-  all.bottomRows(contact->mesh().num_obstacle_vertices) = contact->obstacle_positions();
-  const auto crossing = intersecting_faces(all, contact->mesh().faces, 1);  // CGAL, exact
+  const double kappa = contact_ ? contact_->stiffness() : start_stiffness_;
+  contact->set_stiffness(std::max(contact->stiffness(), kappa));
+  const auto crossing = crossing_faces(*contact, x_, 1);
   if (!crossing.empty())
     fail(Status::intersecting,
          scene_.name + ": the start intersects: " + describe_face(contact->mesh(), crossing[0].a) +
              " and " + describe_face(contact->mesh(), crossing[0].b) + " cross");
+  if (fit_offsets_ && contact->fit_offsets(x_) == 0) fit_offsets_ = false;
   contact->check_separated(x_);
   return problem.add_term(std::move(contact));
 }
@@ -240,26 +261,6 @@ void DirectSimulation::update_scene(Scene scene) {
   if (scene_.mode == StepMode::quasistatic) v_.setZero();
 }
 
-double DirectSimulation::advance_toward(const Vector& target, int max_rounds) {
-  if (target.size() != x_.size())
-    fail(Status::invalid_argument, "advance_toward: the target has " +
-                                       std::to_string(target.size()) + " DOFs, the level " +
-                                       std::to_string(x_.size()));
-  double reached = 0.0;
-  for (int round = 0; round < max_rounds; ++round) {
-    script_step_ = target - x_;
-    for (int d = 0; d < problem_->num_dofs(); ++d)
-      if (problem_->is_fixed(d)) script_step_[d] = 0.0;  // handles follow their script
-    if (script_step_.isZero(0.0)) return 1.0;
-    const double alpha = contact_ ? contact_->max_step(x_, script_step_) : 1.0;
-    x_ += std::min(alpha, 1.0) * script_step_;
-    reached += std::min(alpha, 1.0) * (1.0 - reached);
-    if (alpha >= 1.0) return 1.0;
-    if (alpha < 1e-3) break;  // blocked: the solve that follows finds the way
-  }
-  return reached;
-}
-
 StepRecord DirectSimulation::step() {
   return solve_at((steps_taken_ + 1) * scene_.time_step, true);
 }
@@ -273,19 +274,25 @@ StepRecord DirectSimulation::solve_at(double t, bool new_step) {
   const std::vector<TermStats> before = term_totals();
   const double h = scene_.time_step;
   x_previous_ = x_;
-  if (inertia_) inertia_->set_target(x_ + h * v_);  // x̂ = xᵗ + h vᵗ (implicit Euler)
+  const bool dynamic = scene_.mode == StepMode::dynamic;
+  if (inertia_) inertia_->set_target(x_ + h * v_);  // x̂ = xᵗ + h vᵗ (implicit Euler; v = 0: xᵗ)
   if (contact_) contact_->reset_min_gap();
   const ContactStats contact_before = contact_ ? contact_->stats() : ContactStats{};
-  if (friction_ && new_step)
-    friction_->lag(x_);  // lagged friction (IPC §5): frozen at the step's start
+  // Lagged friction (IPC §5): frozen at the step's start, or at the first solve after a rebuild.
+  if (friction_ && (new_step || !friction_lagged_)) {
+    friction_->lag(x_);
+    friction_lagged_ = true;
+  }
   apply_pressure(t);
   pin_finest_handles(t);
   StepRecord record;
-  const double decrement_scale = inertia_ ? h : 1.0;
+  const double decrement_scale = dynamic ? h : 1.0;
   record.script_reached = advance_scripts(t, decrement_scale, record.newton);
   accumulate(record.newton,
              solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
-  if (inertia_) v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
+  if (fit_offsets_ && contact_)  // raise the lowered offsets as far as the solve opened the pairs
+    record.reduced_offsets = contact_->fit_offsets(x_), fit_offsets_ = record.reduced_offsets > 0;
+  if (dynamic) v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
   if (new_step) ++steps_taken_;
   record.step = steps_taken_;
   record.time = t;

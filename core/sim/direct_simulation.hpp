@@ -22,6 +22,18 @@ class StrainLimit;
 class ObstacleScript;
 class ProlongedElastics;
 
+/// Where a level's simulation starts when it continues another level's (PSQ refinement).
+struct LevelStart {
+  Vector positions;     ///< 3|V_l| DOFs; empty: the level's rest shape
+  int steps_taken = 0;  ///< load steps already taken (the scene time)
+  /// The start may have pairs within their contact offsets (not crossing): a refined level
+  /// (PSQ §4.4.3). Those offsets are lowered to fit and raised back after each solve
+  /// (ContactPotential::fit_offsets).
+  bool inside_offsets = false;
+  Positions obstacles;             ///< where the obstacles are; empty: their script at the time
+  double contact_stiffness = 0.0;  ///< κ reached so far (kept if larger than the scene's)
+};
+
 /// Builds one energy term per enabled effect and advances the scene step by step with
 /// projected Newton. Dynamic scenes minimise the implicit-Euler incremental potential;
 /// quasistatic scenes minimise the potential energy at each step's loads.
@@ -32,13 +44,13 @@ class DirectSimulation {
   /// contact offsets is rejected with Error(intersecting) naming the pair.
   explicit DirectSimulation(Scene scene);
   /// The scene solved at one level of a hierarchy built from its merged bodies (with the
-  /// scene's handles as vertex groups), starting from `start` (3|V_l|, or the level's rest
-  /// shape when null) after `steps_taken` steps. With `level.to_finest` set the shell energy is
-  /// the proxy Ψ_L(P^l(x)) of progressive preview (PSQ eq. 2); otherwise the level's own.
+  /// scene's handles as vertex groups), from `start` (the level's rest shape by default). With
+  /// `level.to_finest` set the shell energy is the proxy Ψ_L(P^l(x)) of progressive preview
+  /// (PSQ eq. 2); otherwise the level's own.
   /// Throws Error(unsupported) for a dynamic scene on a coarse level (progressive dynamics is
-  /// not implemented), Error(invalid_argument) if the hierarchy does not match the scene.
-  DirectSimulation(Scene scene, SimulationLevel level, const Vector* start = nullptr,
-                   int steps_taken = 0);
+  /// not implemented), Error(invalid_argument) if the hierarchy does not match the scene or the
+  /// start has the wrong size, Error(intersecting) as above.
+  DirectSimulation(Scene scene, SimulationLevel level, LevelStart start = {});
   DirectSimulation(const DirectSimulation&) = delete;
   DirectSimulation& operator=(const DirectSimulation&) = delete;
   ~DirectSimulation();
@@ -47,12 +59,6 @@ class DirectSimulation {
   /// reported in the record's stop reason and the state stays finite (the last iterate
   /// the line search accepted).
   StepRecord step();
-
-  /// Moves the free DOFs in a straight line toward `target` (3|V|) as far as contact allows:
-  /// up to `max_rounds` rounds, each advancing by the step additive CCD clears (C-IPC Alg. 1),
-  /// so the state stays intersection-free and outside every contact offset. Without contact
-  /// it moves all the way. Returns the fraction of the way reached (1: at the target).
-  double advance_toward(const Vector& target, int max_rounds);
 
   /// Solves again at the current time with the same loads (no time advance, friction not
   /// re-lagged): reaches equilibrium after a refinement or a parameter change.
@@ -83,6 +89,9 @@ class DirectSimulation {
   std::vector<TermStats> term_totals() const;
   /// The contact term, or nullptr when the scene does not enable contact.
   const ContactPotential* contact() const { return contact_; }
+  /// Face pairs of the shell and the obstacles that cross now, by CGAL's exact predicates (0
+  /// is what contact guarantees); without contact, the shell's own crossing face pairs.
+  std::size_t intersecting_face_pairs() const;
   /// Obstacle vertex positions now (|V_obstacles| × 3); empty without obstacles.
   Positions obstacle_positions() const;
 
@@ -121,6 +130,10 @@ class DirectSimulation {
   Vector x_, v_, x_previous_, script_target_, script_step_;
   int steps_taken_ = 0;
   double length_ = 1.0;
+  bool fit_offsets_ = false;      // the start may sit within contact offsets
+  Positions start_obstacles_;     // LevelStart::obstacles, for the first contact term
+  double start_stiffness_ = 0.0;  // LevelStart::contact_stiffness
+  bool friction_lagged_ = false;  // friction_ has contacts frozen (else the next solve lags)
 };
 
 }  // namespace progsim

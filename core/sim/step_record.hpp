@@ -26,6 +26,9 @@ struct StepRecord {
   /// Fraction of the handles' and obstacles' scripted motion reached this step (1: all; less
   /// when contact kept them from reaching it safely).
   double script_reached = 1.0;
+  /// Contact pairs whose offset is still lowered after a refinement that left them within
+  /// their offsets (PSQ §4.4.3 relaxation by offset homotopy); 0 once the full offsets hold.
+  int reduced_offsets = 0;
 };
 
 /// One line of JSON describing the record (for logs: `steps.jsonl`).

@@ -242,3 +242,28 @@ TEST_P(BroadPhase, FindsEveryPairWithinTheGapLikeBruteForce) {
 }
 
 INSTANTIATE_TEST_SUITE_P(WithAndWithoutOversizedBoxes, BroadPhase, ::testing::Bool());
+
+TEST(ContactPotential, FitOffsetsLowersOnlyThePairsInsideAndRaisesThemBack) {
+  auto configs = configurations(0.0);
+  TwoTriangles touching = configs[0].second;
+  touching.x(3, 2) = 1e-3;  // vertex 3 is 1 mm above A: inside the 2 + 2 mm offset
+  ContactPotential contact = make_contact(touching, 2e-3);
+  Vector x = as_dofs(touching.x);
+  EXPECT_GT(contact.fit_offsets(x), 0);
+  contact.begin_solve(x);
+  EXPECT_TRUE(std::isfinite(contact.value(x)));  // the lowered pair is outside its offset now
+  EXPECT_NO_THROW(contact.check_separated(x));
+  EXPECT_LT(contact.stats().min_gap, 1e-3);  // … by its 80% of 1 mm, not by its full 4 mm
+  // Opened to 3 mm, the pair's offset rises halfway (0.8 → 1.9 mm), still below 4 mm; opened
+  // to 8 mm it would rise to 4.95 mm: the full 4 mm holds again and nothing stays lowered.
+  x[3 * 3 + 2] = 3e-3;
+  EXPECT_GT(contact.fit_offsets(x), 0);
+  x[3 * 3 + 2] = 8e-3;
+  EXPECT_EQ(contact.fit_offsets(x), 0);
+  EXPECT_EQ(contact.reduced_offsets(), 0);
+  contact.begin_solve(x);
+  EXPECT_NO_THROW(contact.check_separated(x));
+  x[3 * 3 + 2] = 3e-3;  // back inside the full offset: +∞ again
+  contact.begin_solve(x);
+  EXPECT_EQ(contact.value(x), std::numeric_limits<double>::infinity());
+}

@@ -136,7 +136,8 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
   const Scene scene =
       parse_scene(scene_text("", R"(, "progressive": {"coarse_levels": 2, "coarsening_ratio": 3.5,
                        "preview_iterations": 4, "preview_tolerance": 1e-4,
-                       "prolongation": "direct", "proxy_hessian": "galerkin"})"),
+                       "prolongation": "direct", "proxy_hessian": "galerkin",
+                       "proximal": true})"),
                   ".");
   EXPECT_EQ(scene.progressive.coarse_levels, 2);
   EXPECT_EQ(scene.progressive.coarsening_ratio, 3.5);
@@ -144,10 +145,12 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
   EXPECT_EQ(scene.progressive.preview_tolerance, 1e-4);
   EXPECT_EQ(scene.progressive.prolongation, ProxyProlongation::direct);
   EXPECT_EQ(scene.progressive.hessian, ProxyHessian::galerkin);
+  EXPECT_TRUE(scene.progressive.proximal);
   EXPECT_TRUE(scene.progressive.enabled());
   const Scene levels = parse_scene(scene_text("", R"(, "progressive": {"levels": [5, 9]})"), ".");
   EXPECT_EQ(levels.progressive.level_vertices, (std::vector<int>{5, 9}));
   EXPECT_EQ(levels.progressive.prolongation, ProxyProlongation::composed);
+  EXPECT_FALSE(levels.progressive.proximal);
   EXPECT_FALSE(parse_scene(scene_text(), ".").progressive.enabled());
 }
 
@@ -163,4 +166,5 @@ TEST(SceneJson, RejectsBadProgressiveSettings) {
                      "unknown 'exact'");
   expect_scene_error(scene_text("", R"(, "progressive": {"preview_iterations": 0})"),
                      "preview_iterations");
+  expect_scene_error(scene_text("", R"(, "progressive": {"proximal": 1})"), "true or false");
 }

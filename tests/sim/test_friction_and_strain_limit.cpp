@@ -92,6 +92,15 @@ TEST(Friction, PlateSticksWhenTheSlopeIsBelowTheFrictionAngle) {
   EXPECT_LT(std::abs(slid), scene.contact.friction_velocity * 0.5);
 }
 
+TEST(Friction, TheFirstSolveOfANewSimulationFreezesItsContacts) {
+  // A settle() before any step (a refined level's first solve) must lag friction too: without
+  // it the plate would solve frictionless and slide.
+  DirectSimulation sim(plate_on_incline(0.1, 0.5, 1));
+  const StepRecord settled = sim.settle();
+  ASSERT_TRUE(settled.friction_contacts.has_value());
+  EXPECT_GT(*settled.friction_contacts, 0);
+}
+
 TEST(StrainLimit, HeavyHangingClothNeverExceedsItsLimit) {
   // A heavy cloth hanging from two corners stretches over 10% without a limit; with s_max = 1.06
   // its largest principal stretch must stay below 1.06 (1 + 1e-3) at every step.
