@@ -38,8 +38,14 @@ AccuracyRow direct_row(const Scene& scene, const ProgressiveSimulation& psq, int
   row.level = level;
   Timer timer;
   DirectSimulation sim(scene, SimulationLevel{psq.shared_hierarchy(), level, {}});
-  for (int s = 0; s < scene.num_steps(); ++s) row.newton_iterations += sim.step().newton.iterations;
+  StepRecord last;
+  for (int s = 0; s < scene.num_steps(); ++s) {
+    last = sim.step();
+    row.newton_iterations += last.newton.iterations;
+  }
   row.seconds = timer.seconds();
+  row.converged = last.newton.stop == NewtonStop::converged;
+  row.intersecting_pairs = static_cast<int>(sim.intersecting_face_pairs());
   row.vertices = sim.model().rest.num_vertices();
   prolonged = level < psq.finest() ? psq.prolong_to_finest(level, Positions(sim.positions()))
                                    : Positions(sim.positions());
@@ -119,7 +125,7 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
   const double units = 2.0 * (finest + 1);
   std::vector<Positions> prolonged;
   Timer total;
-  double excluded = 0.0;  // prolonging the states for the error is not the method's work
+  double excluded = 0.0;  // time the method does not need (checks, prolongation for errors)
   for (int level = 0;; ++level) {
     notify(progress, user, level / units, "progressive level " + std::to_string(level));
     if (level == 0)
@@ -133,8 +139,10 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
     row.vertices = hierarchy->levels[level].rest.num_vertices();
     row.refine_seconds = psq.records()[level].refine_seconds;
     row.newton_iterations = psq.records()[level].newton_iterations;
+    row.converged = psq.records()[level].equilibrium;
+    Timer prolong;  // checking and prolonging the state is not the method's work
+    row.intersecting_pairs = static_cast<int>(psq.current().intersecting_face_pairs());
     report.rows.push_back(row);
-    Timer prolong;
     prolonged.push_back(psq.positions(finest));
     excluded += prolong.seconds();
     if (level == finest) break;
@@ -154,12 +162,14 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
 
 std::string accuracy_csv(const AccuracyReport& report) {
   std::string csv =
-      "method,level,vertices,seconds,refine_seconds,newton_iterations,error_rms,error_max\n";
+      "method,level,vertices,seconds,refine_seconds,newton_iterations,error_rms,error_max,"
+      "intersecting_pairs,converged\n";
   for (const AccuracyRow& r : report.rows) {
     char line[256];
-    std::snprintf(line, sizeof line, "%s,%d,%d,%.6g,%.6g,%d,%.6g,%.6g\n", method_name(r.method),
-                  r.level, r.vertices, r.seconds, r.refine_seconds, r.newton_iterations,
-                  r.error_rms, r.error_max);
+    std::snprintf(line, sizeof line, "%s,%d,%d,%.6g,%.6g,%d,%.6g,%.6g,%d,%d\n",
+                  method_name(r.method), r.level, r.vertices, r.seconds, r.refine_seconds,
+                  r.newton_iterations, r.error_rms, r.error_max, r.intersecting_pairs,
+                  r.converged ? 1 : 0);
     csv += line;
   }
   return csv;
@@ -173,15 +183,19 @@ std::string accuracy_markdown(const AccuracyReport& report) {
       format("%.4g", report.diagonal) +
       " m), after prolonging each level to "
       "the finest mesh. Hierarchy built in " +
-      format("%.3g", report.hierarchy_seconds) + " s (not in the times below).\n\n";
+      format("%.3g", report.hierarchy_seconds) +
+      " s (not in the times below). Crossing face pairs: CGAL's exact check of the level's "
+      "final state, shell and obstacles.\n\n";
   md +=
       "| method | level | vertices | time (s) | refinement (s) | Newton iterations | error RMS "
-      "| error max |\n|---|---|---|---|---|---|---|---|\n";
+      "| error max | crossing face pairs | converged |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const AccuracyRow& r : report.rows)
     md += std::string("| ") + method_name(r.method) + " | " + std::to_string(r.level) + " | " +
           std::to_string(r.vertices) + " | " + format("%.3g", r.seconds) + " | " +
           format("%.3g", r.refine_seconds) + " | " + std::to_string(r.newton_iterations) + " | " +
-          format("%.3g", r.error_rms) + " | " + format("%.3g", r.error_max) + " |\n";
+          format("%.3g", r.error_rms) + " | " + format("%.3g", r.error_max) + " | " +
+          std::to_string(r.intersecting_pairs) + " | " + (r.converged ? "yes" : "no") + " |\n";
   const int finest = finest_level(report);
   const AccuracyRow* preview = find_row(report, Method::progressive, 0);
   const AccuracyRow* full = find_row(report, Method::progressive, finest);
@@ -197,6 +211,10 @@ std::string accuracy_markdown(const AccuracyReport& report) {
   md += "- progressive to the converged finest vs direct finest solve: " +
         format("%.3g", full->seconds) + " s vs " + format("%.3g", direct->seconds) + " s, " +
         format("%.3g", direct->seconds / full->seconds) + "x\n";
+  if (const AccuracyRow* coarse = find_row(report, Method::direct, 0))
+    md += "- coarse preview vs direct coarse solve, error RMS (max): " +
+          format("%.3g", preview->error_rms) + " (" + format("%.3g", preview->error_max) + ") vs " +
+          format("%.3g", coarse->error_rms) + " (" + format("%.3g", coarse->error_max) + ")\n";
   md += "- share of the progressive time in refinement: " +
         format("%.1f", 100.0 * refine / full->seconds) + " %\n";
   md += "- direct finest vs converged progressive finest: RMS " +

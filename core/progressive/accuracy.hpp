@@ -24,6 +24,10 @@ struct AccuracyRow {
   /// solution: root mean square and maximum over the finest vertices, divided by the finest
   /// rest shape's bounding-box diagonal.
   double error_rms = 0.0, error_max = 0.0;
+  /// Face pairs of the shell and obstacles crossing in the level's final state (CGAL exact).
+  int intersecting_pairs = 0;
+  /// Progressive: the level ended at equilibrium; direct: its last solve converged.
+  bool converged = false;
 };
 
 /// All rows of one scene (progressive levels first, then the direct solves by level).

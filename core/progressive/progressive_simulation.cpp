@@ -5,6 +5,7 @@
 #include "common/error.hpp"
 #include "common/timer.hpp"
 #include "hierarchy/level_prolongation.hpp"
+#include "sim/contact_setup.hpp"
 #include "sim/handle_targets.hpp"
 
 namespace progsim {
@@ -48,7 +49,7 @@ ProgressiveSimulation::ProgressiveSimulation(Scene scene,
   to_finest_.resize(hierarchy_->num_levels());
   to_next_.resize(hierarchy_->num_levels());
   records_.resize(hierarchy_->num_levels());
-  sim_ = make_level(0, nullptr, 0);
+  sim_ = make_level(0, {});
 }
 
 ProgressiveSimulation::~ProgressiveSimulation() = default;
@@ -97,12 +98,11 @@ Scene ProgressiveSimulation::level_scene(int level) const {
   return scene;
 }
 
-std::unique_ptr<DirectSimulation> ProgressiveSimulation::make_level(int level, const Vector* start,
-                                                                    int steps_taken) const {
+std::unique_ptr<DirectSimulation> ProgressiveSimulation::make_level(int level,
+                                                                    LevelStart start) const {
   SimulationLevel spec{hierarchy_, level, {}};
   if (level < finest()) spec.to_finest = to_finest(level);
-  return std::make_unique<DirectSimulation>(level_scene(level), std::move(spec), start,
-                                            steps_taken);
+  return std::make_unique<DirectSimulation>(level_scene(level), std::move(spec), std::move(start));
 }
 
 void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
@@ -117,6 +117,7 @@ void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
   // The Newton test passed within the step: the state is an equilibrium of the level's energy
   // at these loads (PSQ Algorithm 1 flags it when the first test passes).
   r.equilibrium = step.newton.stop == NewtonStop::converged;
+  r.reduced_offsets = step.reduced_offsets;
 }
 
 StepRecord ProgressiveSimulation::step() {
@@ -137,39 +138,57 @@ bool ProgressiveSimulation::settle_to_equilibrium(int max_solves) {
   return false;
 }
 
+RefinementSurroundings ProgressiveSimulation::surroundings(int level) const {
+  const ContactPotential& contact = *sim_->contact();
+  const CollisionMesh& mesh = contact.mesh();
+  ShellModel model = build_shell_model(scene_);
+  if (level < finest()) model = level_shell_model(model, *hierarchy_, level);
+  RefinementSurroundings around;
+  around.vertex_offset = shell_contact_offsets(model);
+  around.obstacle_positions = contact.obstacle_positions();
+  around.obstacle_faces = mesh.faces.bottomRows(mesh.faces.rows() - mesh.num_shell_faces).array() -
+                          mesh.num_shell_vertices;
+  if (contact.ground()) around.ground = *contact.ground();
+  around.dhat = contact.dhat();
+  return around;
+}
+
 void ProgressiveSimulation::refine() {
   if (level_ >= finest())
     fail(Status::out_of_range, "already at the finest level " + std::to_string(finest()) +
                                    "; there is nothing to refine");
   Timer timer;
+  const std::string where = "refining level " + std::to_string(level_) + ": ";
   const Positions coarse = sim_->positions();
-  const ShellProlongation& next_level = *next_operator(level_);
-  const Vector target = as_dofs(next_level(coarse));  // P^l_{l+1}(x_l), PSQ eq. 7
+  const Positions target = (*next_operator(level_))(coarse);  // P^l_{l+1}(x_l), PSQ eq. 7
   if (!target.allFinite())
-    fail(Status::numerical_failure,
-         "refining level " + std::to_string(level_) + ": the prolonged state is not finite");
-  // With contact the level starts on the coarse surface, U x_l (every new vertex at its
-  // intrinsic anchor: the surface level l has already cleared), then moves toward P(x_l) as far
-  // as CCD allows. A simplification of PSQ §4.4's per-batch expansion: one global advance.
-  const bool contact = sim_->contact() != nullptr;
-  const Vector start = contact ? as_dofs(Positions(next_level.intrinsic() * coarse)) : target;
+    fail(Status::numerical_failure, where + "the prolonged state is not finite");
+  // Without contact the level starts at the target; with contact, PSQ §4.4's safe expansion
+  // gets as close to it as it can without crossing or entering a contact offset.
+  SafeRefinementStats refinement;
+  Vector start = as_dofs(target);
   std::unique_ptr<DirectSimulation> next;
   try {
-    next = make_level(level_ + 1, &start, sim_->steps_taken());
+    if (sim_->contact())
+      start = as_dofs(safe_refinement(*hierarchy_, level_, coarse, target, surroundings(level_ + 1),
+                                      {}, &refinement));
+    const ContactPotential* contact = sim_->contact();
+    next =
+        make_level(level_ + 1, {std::move(start), sim_->steps_taken(), true,
+                                sim_->obstacle_positions(), contact ? contact->stiffness() : 0.0});
   } catch (const Error& e) {
     if (e.status() != Status::intersecting) throw;
-    fail(Status::intersecting, "refining level " + std::to_string(level_) + ": " + e.what());
+    fail(Status::intersecting, where + e.what());
   }
-  const double reached = contact ? next->advance_toward(target, 50) : 1.0;
   if (!std::isfinite(next->problem().value(next->dofs())))
-    fail(Status::unsupported, "refining level " + std::to_string(level_) +
-                                  ": the refined state has infinite energy (a strain limit is "
+    fail(Status::unsupported, where +
+                                  "the refined state has infinite energy (a strain limit is "
                                   "exceeded); strain-limit relaxation (PSQ §4.4) is not in yet");
   records_[level_].positions = coarse;
   sim_ = std::move(next);
   ++level_;
   records_[level_].refine_seconds += timer.seconds();
-  records_[level_].refine_reached = reached;
+  records_[level_].refinement = refinement;
 }
 
 Positions ProgressiveSimulation::positions(int level) const {

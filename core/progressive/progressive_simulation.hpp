@@ -8,6 +8,7 @@
 
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "hierarchy/shell_prolongation.hpp"
+#include "progressive/safe_refinement.hpp"
 #include "progressive/state_distance.hpp"
 #include "scene/scene.hpp"
 #include "sim/direct_simulation.hpp"
@@ -22,14 +23,16 @@ struct LevelRecord {
   int converged_solves = 0;     ///< steps and settles whose Newton solve met the tolerance
   double solve_seconds = 0.0;   ///< wall time of the level's steps and settles
   double refine_seconds = 0.0;  ///< wall time to build the level's start from the coarser one
-  /// With contact: the fraction of the way from the coarse surface to the prolonged state
-  /// that refinement reached before contact stopped it (1 without contact).
-  double refine_reached = 1.0;
+  /// How the level's start was built from the coarser one (PSQ §4.4; zeros without contact).
+  SafeRefinementStats refinement;
   double energy = 0.0;          ///< E at the level's current or last state (J)
   double gradient_norm = 0.0;   ///< ‖∇E‖ over free DOFs there
   double simulated_time = 0.0;  ///< scene time of the last solve (s)
-  bool equilibrium = false;     ///< the last solve needed no Newton step (PSQ Algorithm 1 line 21)
-  Positions positions;          ///< the state when the level was left (empty while current)
+  /// Contact pairs whose offset is still lowered after the last solve: where contact kept a
+  /// split patch from opening fully (StepRecord::reduced_offsets); 0 normally.
+  int reduced_offsets = 0;
+  bool equilibrium = false;  ///< the last solve needed no Newton step (PSQ Algorithm 1 line 21)
+  Positions positions;       ///< the state when the level was left (empty while current)
 };
 
 /// The progressive driver. Level 0 is the coarsest; finest() is the scene's mesh. Quasistatic
@@ -58,11 +61,11 @@ class ProgressiveSimulation {
   bool settle_to_equilibrium(int max_solves);
   /// Refines the current level l into l+1 toward the hierarchy's P^l_{l+1}(x_l) (PSQ eq. 7) and
   /// continues there at the same scene time. Without contact the level starts at P^l_{l+1}(x_l).
-  /// With contact it starts on level l's surface (U x_l: intersection-free where x_l is) and
-  /// advances toward P^l_{l+1}(x_l) in CCD-bounded rounds, so it never starts intersecting even
-  /// when the prolonged state does. Throws Error(out_of_range) at the finest level,
-  /// Error(intersecting) if the start on the coarse surface comes within a contact offset,
-  /// Error(unsupported) if it breaks a strain limit. On Error nothing changed.
+  /// With contact it starts where safe_refinement() (PSQ §4.4) takes it: split by split toward
+  /// P^l_{l+1}(x_l), never crossing or entering a contact offset, even when the prolonged state
+  /// itself intersects. Throws Error(out_of_range) at the finest level, Error(intersecting) if
+  /// no safe start is found, Error(unsupported) if it breaks a strain limit. On Error nothing
+  /// changed.
   void refine();
 
   int level() const { return level_; }
@@ -95,12 +98,14 @@ class ProgressiveSimulation {
  private:
   /// The scene a level is solved with: the preview iteration cap below the finest level.
   Scene level_scene(int level) const;
-  /// A new simulation of `level` from `start` after `steps_taken` steps.
-  std::unique_ptr<DirectSimulation> make_level(int level, const Vector* start,
-                                               int steps_taken) const;
+  /// A new simulation of `level` from `start`.
+  std::unique_ptr<DirectSimulation> make_level(int level, LevelStart start) const;
   /// P_{level+1}^level (PSQ eq. 7) and P^level (eq. 9), built once.
   const std::shared_ptr<const ShellProlongation>& next_operator(int level) const;
   const std::shared_ptr<const ShellProlongation>& direct_operator(int level) const;
+  /// What the shell of `level` must stay clear of during refinement: its contact offsets, the
+  /// obstacles where they are now, the ground.
+  RefinementSurroundings surroundings(int level) const;
   /// Adds a solve's outcome to the current level's record.
   void record(const StepRecord& step, bool new_step);
 

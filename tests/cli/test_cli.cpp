@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -186,9 +187,13 @@ TEST_F(Cli, AccuracyWritesTableCsvAndPlots) {
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header,
-            "method,level,vertices,seconds,refine_seconds,newton_iterations,error_rms,error_max");
+            "method,level,vertices,seconds,refine_seconds,newton_iterations,error_rms,error_max,"
+            "intersecting_pairs,converged");
   int lines = 0;
-  for (std::string line; std::getline(csv, line);) ++lines;
+  for (std::string line; std::getline(csv, line);) {
+    ++lines;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 9) << line;
+  }
   EXPECT_EQ(lines, 6);  // 3 levels, progressive and direct
 }
 

@@ -3,15 +3,18 @@
 // chords by the sagitta, under a small obstacle placed between the chords and the dome. The
 // independent check is CGAL's exact triangle–triangle intersection test.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <Eigen/Geometry>
 
+#include "common/error.hpp"
 #include "contact/contact_potential.hpp"
 #include "hierarchy/hierarchy_test_meshes.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "mesh/intersection_check.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "progressive/progressive_test_scenes.hpp"
+#include "progressive/safe_refinement.hpp"
 
 using namespace progsim;
 using namespace progsim::test_support;
@@ -43,9 +46,9 @@ TriangleMesh small_triangle(const Vec3& c, const Vec3& n, double r) {
   return t;
 }
 
-}  // namespace
-
-TEST(ContactRefinement, NeverStartsIntersectingWhenTheProlongedTargetDoes) {
+/// A dome (rim held) with a small obstacle between its coarse chords and its fine surface: the
+/// prolonged state of the coarse level crosses the obstacle.
+Scene dome_under_lid() {
   ShellMaterial material;
   material.youngs_modulus = 1e6;
   material.thickness = 1e-4;
@@ -78,24 +81,104 @@ TEST(ContactRefinement, NeverStartsIntersectingWhenTheProlongedTargetDoes) {
        c = coarse.vertices.row(coarse.faces(top, 2));
   const Vec3 centre = (a + b + c) / 3.0, normal = (b - a).cross(c - a).normalized();
   const double sagitta = 1.0 - centre.norm();  // the dome is a unit sphere about the origin
-  ASSERT_GT(sagitta, 4e-3);
+  EXPECT_GT(sagitta, 4e-3);
   Obstacle lid;
   lid.name = "lid";
   lid.mesh = small_triangle(centre + 0.5 * sagitta * normal, normal, 0.4 * (b - a).norm());
   scene.obstacles.push_back(lid);
 
+  return scene;
+}
+
+}  // namespace
+
+TEST(ContactRefinement, NeverStartsIntersectingWhenTheProlongedTargetDoes) {
+  const Scene scene = dome_under_lid();
+  const TriangleMesh& mesh = scene.bodies[0].mesh;
+  const TriangleMesh& lid = scene.obstacles[0].mesh;
   ProgressiveSimulation psq(scene);
   psq.step();
   const Positions preview = psq.positions(0);
   const Positions target = next_level_prolongation(psq.hierarchy(), 0)(preview);
   // The premise: the prolonged state crosses the obstacle (CGAL).
-  ASSERT_GT(crossing_pairs(target, mesh.faces, lid.mesh), 0u);
+  ASSERT_GT(crossing_pairs(target, mesh.faces, lid), 0u);
   psq.refine();
   ASSERT_EQ(psq.level(), 1);
-  EXPECT_EQ(crossing_pairs(psq.positions(1), mesh.faces, lid.mesh), 0u);
-  EXPECT_LT(psq.records()[1].refine_reached, 1.0);  // contact stopped it short of the target
-  EXPECT_GT(psq.records()[1].refine_reached, 0.0);
-  psq.settle_to_equilibrium(100);
-  EXPECT_EQ(crossing_pairs(psq.positions(1), mesh.faces, lid.mesh), 0u);
+  EXPECT_EQ(crossing_pairs(psq.positions(1), mesh.faces, lid), 0u);
+  const SafeRefinementStats& refinement = psq.records()[1].refinement;
+  EXPECT_GT(refinement.stopped_vertices, 0);  // contact stopped some splits short of the target
+  EXPECT_LT(refinement.reached, 1.0);
+  EXPECT_GT(refinement.reached, 0.5);
+  EXPECT_GT(refinement.min_gap, 0.0);
+  EXPECT_EQ(refinement.splits, psq.hierarchy().levels[1].rest.num_vertices() -
+                                   psq.hierarchy().levels[0].rest.num_vertices());
+  // The level's solves push the pairs left within their offsets open where contact allows.
+  EXPECT_TRUE(psq.settle_to_equilibrium(100));  // also opens any patch left within an offset
+  EXPECT_EQ(crossing_pairs(psq.positions(1), mesh.faces, lid), 0u);
   EXPECT_TRUE(psq.current().dofs().allFinite());
+}
+
+namespace {
+
+/// Level 0 of `scene`'s hierarchy as a previewed state, and what level 1 must stay clear of.
+struct RefinementCase {
+  std::unique_ptr<ProgressiveSimulation> psq;
+  Positions coarse, target;
+  RefinementSurroundings around;
+};
+
+RefinementCase previewed(const Scene& scene) {
+  RefinementCase c{std::make_unique<ProgressiveSimulation>(scene), {}, {}, {}};
+  c.psq->step();
+  c.coarse = c.psq->positions(0);
+  c.target = next_level_prolongation(c.psq->hierarchy(), 0)(c.coarse);
+  c.around.vertex_offset.assign(c.target.rows(), 0.5 * scene.bodies[0].material.thickness);
+  c.around.obstacle_positions = scene.obstacles[0].mesh.vertices;
+  c.around.obstacle_faces = scene.obstacles[0].mesh.faces;
+  c.around.dhat = scene.contact.dhat;
+  return c;
+}
+
+}  // namespace
+
+TEST(SafeRefinement, ClearOfTheObstacleItGetsCloseToTheProlongedState) {
+  Scene scene = dome_under_lid();
+  scene.obstacles[0].mesh.vertices.col(2).array() += 1.0;  // the lid far above
+  RefinementCase c = previewed(scene);
+  SafeRefinementStats stats;
+  const Positions x =
+      safe_refinement(c.psq->hierarchy(), 0, c.coarse, c.target, c.around, {}, &stats);
+  // Far from the obstacle only the shell's own pairs can stop a split: the linear paths from
+  // the collapsed patches to the targets bring a few of them near (their ACCD bound stops them).
+  EXPECT_GT(stats.reached, 0.95);
+  EXPECT_LT(stats.stopped_vertices, x.rows() / 10);
+  EXPECT_TRUE(intersecting_faces(x, scene.bodies[0].mesh.faces, 1).empty());  // CGAL
+  EXPECT_EQ(stats.batches, static_cast<int>(c.psq->hierarchy().expansion_batches[0].size()));
+}
+
+TEST(SafeRefinement, StopsShortOfTheObstacleAndDoesNotDependOnThreads) {
+  const Scene scene = dome_under_lid();
+  RefinementCase c = previewed(scene);
+  ASSERT_GT(crossing_pairs(c.target, scene.bodies[0].mesh.faces, scene.obstacles[0].mesh), 0u);
+  SafeRefinementStats stats;
+  omp_set_num_threads(1);
+  const Positions one =
+      safe_refinement(c.psq->hierarchy(), 0, c.coarse, c.target, c.around, {}, &stats);
+  omp_set_num_threads(2);
+  const Positions two = safe_refinement(c.psq->hierarchy(), 0, c.coarse, c.target, c.around);
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(crossing_pairs(one, scene.bodies[0].mesh.faces, scene.obstacles[0].mesh), 0u);
+  EXPECT_GT(stats.stopped_vertices, 0);
+  EXPECT_GT(stats.min_gap, 0.0);
+  EXPECT_TRUE(one.allFinite());
+}
+
+TEST(SafeRefinement, RefusesBadArguments) {
+  RefinementCase c = previewed(dome_under_lid());
+  const MeshHierarchy& h = c.psq->hierarchy();
+  EXPECT_THROW(safe_refinement(h, 1, c.coarse, c.target, c.around), Error);
+  EXPECT_THROW(safe_refinement(h, -1, c.coarse, c.target, c.around), Error);
+  EXPECT_THROW(safe_refinement(h, 0, c.target, c.target, c.around), Error);
+  c.around.vertex_offset.pop_back();
+  EXPECT_THROW(safe_refinement(h, 0, c.coarse, c.target, c.around), Error);
 }

@@ -1,0 +1,71 @@
+// The bundled PSQ scenes (scenes/psq_*.json) at CI sizes, through the accuracy run: on every
+// level, progressive and direct, no face pairs of the shell and obstacles cross (CGAL's exact
+// check), the progressive finest level ends at equilibrium, and the states stay finite.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "progressive/accuracy.hpp"
+#include "scene/scene_json.hpp"
+
+using namespace progsim;
+
+namespace {
+
+using Edits = std::vector<std::pair<std::string, std::string>>;
+
+/// A bundled scene with parts of its JSON text replaced (smaller meshes and fewer load steps
+/// than the bundled sizes, for CI). Every edit must apply.
+Scene bundled(const std::string& file, const Edits& edits) {
+  const std::string dir = std::string(PROGSIM_SOURCE_DIR) + "/scenes";
+  std::ifstream in(dir + "/" + file);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string json = text.str();
+  for (const auto& [from, to] : edits) {
+    const auto at = json.find(from);
+    EXPECT_NE(at, std::string::npos) << file << ": no '" << from << "'";
+    if (at != std::string::npos) json.replace(at, from.size(), to);
+  }
+  return parse_scene(json, dir);
+}
+
+/// Every row crossing-free; the progressive finest level at equilibrium.
+void expect_safe_and_converged(const AccuracyReport& report) {
+  for (const AccuracyRow& row : report.rows) {
+    SCOPED_TRACE(
+        (row.method == AccuracyRow::Method::progressive ? "progressive level " : "direct level ") +
+        std::to_string(row.level));
+    EXPECT_EQ(row.intersecting_pairs, 0);
+    EXPECT_TRUE(std::isfinite(row.error_rms));
+  }
+  const AccuracyRow& finest = report.rows[report.rows.size() / 2 - 1];
+  ASSERT_EQ(finest.method, AccuracyRow::Method::progressive);
+  EXPECT_TRUE(finest.converged);
+}
+
+}  // namespace
+
+TEST(PsqScenes, ClothOnSphereIsIntersectionFreeOnEveryLevel) {
+  const Scene scene =
+      bundled("psq_cloth_on_sphere.json", {{R"("nx": 40, "ny": 40)", R"("nx": 20, "ny": 20)"}});
+  ASSERT_EQ(scene.bodies[0].mesh.num_vertices(), 441);
+  const AccuracyReport report = run_accuracy(scene);
+  ASSERT_EQ(report.rows.size(), 6u);
+  expect_safe_and_converged(report);
+  // The coarse preview lies within a fifth of the diagonal of the converged result.
+  EXPECT_LT(report.rows[0].error_rms, 0.2);
+}
+
+TEST(PsqScenes, StiffThinCanCrushStaysFiniteAndIntersectionFree) {
+  const Scene scene =
+      bundled("psq_can_crush.json",
+              {{R"("n_around": 48, "n_along": 16)", R"("n_around": 24, "n_along": 8)"},
+               {R"("duration": 10.0)", R"("duration": 3.0)"}});
+  const AccuracyReport report = run_accuracy(scene, 100);
+  ASSERT_EQ(report.rows.size(), 6u);
+  expect_safe_and_converged(report);
+}
