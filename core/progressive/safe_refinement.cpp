@@ -21,8 +21,6 @@ constexpr int kDirectionsPerRound = 64;
 /// A perturbed vertex keeps its patch's other primitives at least this fraction of the
 /// perturbation away.
 constexpr double kMinClearance = 0.05;
-/// A new vertex first moves this fraction of its target edge off its partner (CCD-bounded).
-constexpr double kTargetEdgeFraction = 0.01;
 /// Perturbation sizes tried per split, each a tenth of the one before.
 constexpr int kScales = 8;
 
@@ -269,7 +267,7 @@ class Expansion {
   }
 
   /// The first try of PSQ Alg. 5, sized by CCD rather than by the gap: each new vertex j moves
-  /// off its partner k along the direction of its target edge, by kTargetEdgeFraction of that
+  /// off its partner k along the direction of its target edge, by target_edge_fraction of that
   /// edge or as far as additive CCD clears against everything outside its patch (a vertex
   /// pressed on an obstacle may still slide along it), then its patch is checked. Returns, per
   /// split, whether j was placed (the others are back at their partners).
@@ -283,7 +281,7 @@ class Expansion {
       for (const FaceCorners& face : record.before)
         for (int id : face) owner[compact_[fine_index_[id]]] = b;
       const int j = fine_index_[record.removed], k = fine_index_[record.kept];
-      step[b] = kTargetEdgeFraction * (target_.row(j) - target_.row(k)).transpose();
+      step[b] = settings_.target_edge_fraction * (target_.row(j) - target_.row(k)).transpose();
       moved[b] = compact_[j];
       end.row(moved[b]) += step[b].transpose();
     }
@@ -361,9 +359,9 @@ class Expansion {
     std::vector<char> moving(mesh_.num_vertices(), 0);
     Positions end = points_;
     double start_distance = 0.0;
-    Positions end_of_path(movers.size(), 3);  // where each mover started, for relax_stuck()
+    Positions path_start(movers.size(), 3);  // where each mover started, for relax_stuck()
     for (std::size_t m = 0; m < movers.size(); ++m)
-      end_of_path.row(m) = points_.row(compact_[movers[m]]);
+      path_start.row(m) = points_.row(compact_[movers[m]]);
     for (int v : movers) {
       const int c = compact_[v];
       moving[c] = 1;
@@ -403,7 +401,7 @@ class Expansion {
         for (int c = 0; c < mesh_.num_shell_vertices; ++c)
           if (moving[c]) stats.stopped_vertices += stop(c, moving, end);
     }
-    relax_stuck(movers, end_of_path, stats);
+    relax_stuck(movers, path_start, stats);
     double remaining = 0.0;
     for (int v : movers) {
       x_.row(v) = points_.row(compact_[v]);

@@ -24,8 +24,12 @@ struct RefinementSurroundings {
 
 /// Parameters of PSQ Algorithms 3–5.
 struct SafeRefinementSettings {
-  /// A new vertex first moves this fraction of the smallest gap at its patch (PSQ Alg. 3 line 6
-  /// uses 0.01 of the global gap g₀; the local gap is safe up to 1 and keeps new pairs larger).
+  /// A new vertex first moves this fraction of its target edge off its partner, along it, as
+  /// far as additive CCD clears against everything outside its patch.
+  double target_edge_fraction = 0.01;
+  /// Failing that, it moves this fraction of the smallest gap at its patch, toward its target
+  /// or along random directions (PSQ Alg. 3 line 6 uses 0.01 of the global gap g₀; the local
+  /// gap is safe up to 1 and keeps new pairs larger).
   double perturbation = 0.5;
   double close_ratio = 0.999;  ///< ACCD keeps this fraction of a gap below g₀ (Alg. 4)
   double far_ratio = 0.1;      ///< … and this fraction of the others
@@ -57,11 +61,13 @@ struct SafeRefinementStats {
 /// Refines `coarse` (|V_level| × 3, intersection-free and outside every contact offset) into
 /// level `level + 1` of `hierarchy`, toward `target` (|V_{level+1}| × 3, usually
 /// P^l_{l+1}(coarse), PSQ eq. 7). Per batch of hierarchy.expansion_batches[level]: the gap g₀
-/// (PSQ §4.4.2), the splits, a perturbation of each new vertex by perturbation·g₀ toward its
-/// target or else along stratified random directions until its patch is free of intersections
-/// (CGAL exact predicates), then linear advancement of the batch's vertices toward their
-/// targets, each round by the largest step additive CCD clears, stopping the vertices of the
-/// pairs that bound it (Algorithm 3). Pairs inside a split patch start closer than their offset;
+/// (PSQ §4.4.2), the splits, a perturbation of each new vertex (Algorithm 5: along its target
+/// edge as far as CCD allows, else by perturbation × the local gap toward its target or along
+/// stratified random directions) until its patch is free of intersections (CGAL exact
+/// predicates), then linear advancement of the batch's vertices toward their targets, each
+/// round by the largest step additive CCD clears, stopping the vertices of the pairs that bound
+/// it (Algorithm 3), and a local relaxation toward their targets of the splits stopped short
+/// (§4.4.3, relax_toward_targets). Pairs inside a split patch start closer than their offset;
 /// for them CCD keeps them from crossing (offset 0) rather than from coming within ξ.
 /// Returns the level-(level+1) positions: free of crossings, though pairs in patches that
 /// contact kept from opening may remain within their offsets (counted in the stats).
