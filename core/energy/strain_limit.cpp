@@ -112,8 +112,22 @@ StrainLimit::StrainLimit(const Positions& rest, const Faces& faces, std::vector<
     Element& el = elements_[f];
     el.beta = frame.beta;
     el.area = frame.area;
-    el.limit = limit;
+    el.limit = el.own_limit = limit;
   }
+}
+
+int StrainLimit::fit_limits(const Vector& x) {
+  int raised = 0;
+#pragma omp parallel for reduction(+ : raised) schedule(static) if (num_elements() >= kMinParallelItems)
+  for (int e = 0; e < num_elements(); ++e) {
+    Element& el = elements_[e];
+    const double sigma = Spectrum(deformation_gradient(el.beta, gather(e, x))).sigma1;
+    const double lowered =
+        el.limit > sigma ? sigma + 0.5 * (el.limit - sigma) : sigma + 0.5 * band_;
+    el.limit = std::max(el.own_limit, lowered);
+    raised += el.limit > el.own_limit;
+  }
+  return raised;
 }
 
 void StrainLimit::set_stiffness(double stiffness) {

@@ -60,8 +60,15 @@ class StrainLimit : public StencilTerm<3> {
 
   /// ŝ.
   double band() const { return band_; }
-  /// s_f of face f.
+  /// s_f of face f (raised by fit_limits() while a start beyond the limit is relaxed).
   double limit(int f) const { return elements_[f].limit; }
+  /// Limit homotopy for a start beyond some faces' limits (a refined level, PSQ §4.4 and
+  /// Algorithm 2's strain-limit relaxation): a face with σ₁ ≥ its limit gets the limit σ₁ + ŝ/2
+  /// (inside the barrier's band, so it pulls the face back); on later calls, after a solve, a
+  /// raised limit comes down halfway to the face's σ₁, never below the face's own s_f. Faces
+  /// under their s_f keep it. Call after each solve until it returns 0; returns the faces whose
+  /// limit is still raised. Not thread-safe with a concurrent evaluation.
+  int fit_limits(const Vector& x);
   /// Rest area Ā of face f (m²).
   double rest_area(int f) const { return elements_[f].area; }
 
@@ -77,7 +84,8 @@ class StrainLimit : public StencilTerm<3> {
   struct Element {
     Eigen::Matrix<double, 3, 2> beta;  ///< ∂F/∂x_a = I₃ ⊗ β_aᵀ; rows sum to zero
     double area;                       ///< Ā (m²)
-    double limit;                      ///< s_f
+    double limit;                      ///< the limit in force (s_f unless fit_limits raised it)
+    double own_limit;                  ///< s_f
   };
 
   std::vector<Element> elements_;

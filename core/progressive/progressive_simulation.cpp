@@ -118,6 +118,7 @@ void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
   // at these loads (PSQ Algorithm 1 flags it when the first test passes).
   r.equilibrium = step.newton.stop == NewtonStop::converged;
   r.reduced_offsets = step.reduced_offsets;
+  r.raised_limits = step.raised_limits;
 }
 
 StepRecord ProgressiveSimulation::step() {
@@ -181,9 +182,7 @@ void ProgressiveSimulation::refine() {
     fail(Status::intersecting, where + e.what());
   }
   if (!std::isfinite(next->problem().value(next->dofs())))
-    fail(Status::unsupported, where +
-                                  "the refined state has infinite energy (a strain limit is "
-                                  "exceeded); strain-limit relaxation (PSQ §4.4) is not in yet");
+    fail(Status::numerical_failure, where + "the refined state has no finite energy");
   records_[level_].positions = coarse;
   sim_ = std::move(next);
   ++level_;

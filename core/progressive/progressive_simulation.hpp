@@ -31,6 +31,8 @@ struct LevelRecord {
   /// Contact pairs whose offset is still lowered after the last solve: where contact kept a
   /// split patch from opening fully (StepRecord::reduced_offsets); 0 normally.
   int reduced_offsets = 0;
+  /// Faces whose strain limit is still raised after the last solve (StepRecord::raised_limits).
+  int raised_limits = 0;
   bool equilibrium = false;  ///< the last solve needed no Newton step (PSQ Algorithm 1 line 21)
   Positions positions;       ///< the state when the level was left (empty while current)
 };
@@ -63,9 +65,10 @@ class ProgressiveSimulation {
   /// continues there at the same scene time. Without contact the level starts at P^l_{l+1}(x_l).
   /// With contact it starts where safe_refinement() (PSQ §4.4) takes it: split by split toward
   /// P^l_{l+1}(x_l), never crossing or entering a contact offset, even when the prolonged state
-  /// itself intersects. Throws Error(out_of_range) at the finest level, Error(intersecting) if
-  /// no safe start is found, Error(unsupported) if it breaks a strain limit. On Error nothing
-  /// changed.
+  /// itself intersects. Faces the refined start leaves beyond their strain limit get raised
+  /// limits that the level's solves bring back down (StrainLimit::fit_limits; PSQ Algorithm 2
+  /// relaxes them with the coarse vertices fixed instead). Throws Error(out_of_range) at the
+  /// finest level, Error(intersecting) if no safe start is found. On Error nothing changed.
   void refine();
 
   int level() const { return level_; }

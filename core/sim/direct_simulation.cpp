@@ -65,7 +65,7 @@ DirectSimulation::DirectSimulation(Scene scene, SimulationLevel level, LevelStar
       level_(std::move(level)),
       obstacles_(std::make_unique<ObstacleScript>(scene_)),
       steps_taken_(start.steps_taken),
-      fit_offsets_(start.inside_offsets),
+      fit_to_start_(start.fit_to_start),
       start_obstacles_(std::move(start.obstacles)),
       start_stiffness_(start.contact_stiffness) {
   if (level_.hierarchy && !level_.is_finest() && scene_.mode == StepMode::dynamic)
@@ -128,7 +128,10 @@ void DirectSimulation::build_problem() {
       friction = &problem->add_term(std::move(term));
   StrainLimit* strain_limit = nullptr;
   if (fx.has(Effect::strain_limit))
-    if (auto term = make_strain_limit(model_)) strain_limit = &problem->add_term(std::move(term));
+    if (auto term = make_strain_limit(model_)) {
+      if (fit_to_start_) term->fit_limits(x_);
+      strain_limit = &problem->add_term(std::move(term));
+    }
   problem->set_fixed_dofs(handles_.fixed_dofs(n));
   problem->finalize();
   problem_ = std::move(problem);
@@ -184,7 +187,7 @@ ContactPotential& DirectSimulation::add_contact(Problem& problem) {
     fail(Status::intersecting,
          scene_.name + ": the start intersects: " + describe_face(contact->mesh(), crossing[0].a) +
              " and " + describe_face(contact->mesh(), crossing[0].b) + " cross");
-  if (fit_offsets_ && contact->fit_offsets(x_) == 0) fit_offsets_ = false;
+  if (fit_to_start_) contact->fit_offsets(x_);
   contact->check_separated(x_);
   return problem.add_term(std::move(contact));
 }
@@ -290,8 +293,7 @@ StepRecord DirectSimulation::solve_at(double t, bool new_step) {
   record.script_reached = advance_scripts(t, decrement_scale, record.newton);
   accumulate(record.newton,
              solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
-  if (fit_offsets_ && contact_)  // raise the lowered offsets as far as the solve opened the pairs
-    record.reduced_offsets = contact_->fit_offsets(x_), fit_offsets_ = record.reduced_offsets > 0;
+  if (fit_to_start_) restore_fitted(record);
   if (dynamic) v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
   if (new_step) ++steps_taken_;
   record.step = steps_taken_;
@@ -303,6 +305,13 @@ StepRecord DirectSimulation::solve_at(double t, bool new_step) {
   if (strain_limit_) record.max_stretch = strain_limit_->max_stretch(x_);
   record.seconds = timer.seconds();
   return record;
+}
+
+void DirectSimulation::restore_fitted(StepRecord& record) {
+  // Raise the lowered offsets and lower the raised limits as far as the solve allows.
+  if (contact_) record.reduced_offsets = contact_->fit_offsets(x_);
+  if (strain_limit_) record.raised_limits = strain_limit_->fit_limits(x_);
+  fit_to_start_ = record.reduced_offsets > 0 || record.raised_limits > 0;
 }
 
 std::vector<TermStats> DirectSimulation::term_totals() const {

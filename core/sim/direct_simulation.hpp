@@ -26,10 +26,10 @@ class ProlongedElastics;
 struct LevelStart {
   Vector positions;     ///< 3|V_l| DOFs; empty: the level's rest shape
   int steps_taken = 0;  ///< load steps already taken (the scene time)
-  /// The start may have pairs within their contact offsets (not crossing): a refined level
-  /// (PSQ §4.4.3). Those offsets are lowered to fit and raised back after each solve
-  /// (ContactPotential::fit_offsets).
-  bool inside_offsets = false;
+  /// The start may have pairs within their contact offsets (not crossing) and faces beyond
+  /// their strain limits: a refined level (PSQ §4.4). Both are fitted to it and restored by the
+  /// solves (ContactPotential::fit_offsets, StrainLimit::fit_limits).
+  bool fit_to_start = false;
   Positions obstacles;             ///< where the obstacles are; empty: their script at the time
   double contact_stiffness = 0.0;  ///< κ reached so far (kept if larger than the scene's)
 };
@@ -108,6 +108,9 @@ class DirectSimulation {
   /// Adds the contact term after checking that the current state does not intersect.
   ContactPotential& add_contact(Problem& problem);
   void apply_pressure(double t);
+  /// After a solve from a fitted start: offsets and strain limits moved back toward their own
+  /// values, what is still fitted counted in `record`.
+  void restore_fitted(StepRecord& record);
   /// Moves handles and obstacles toward their scripts at time t, in CCD-safe rounds with a
   /// Newton solve between rounds when contact stops them; returns the fraction reached.
   double advance_scripts(double t, double decrement_scale, NewtonReport& report);
@@ -130,7 +133,7 @@ class DirectSimulation {
   Vector x_, v_, x_previous_, script_target_, script_step_;
   int steps_taken_ = 0;
   double length_ = 1.0;
-  bool fit_offsets_ = false;      // the start may sit within contact offsets
+  bool fit_to_start_ = false;     // offsets and strain limits still fitted to the start
   Positions start_obstacles_;     // LevelStart::obstacles, for the first contact term
   double start_stiffness_ = 0.0;  // LevelStart::contact_stiffness
   bool friction_lagged_ = false;  // friction_ has contacts frozen (else the next solve lags)

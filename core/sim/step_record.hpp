@@ -29,6 +29,9 @@ struct StepRecord {
   /// Contact pairs whose offset is still lowered after a refinement that left them within
   /// their offsets (PSQ §4.4.3 relaxation by offset homotopy); 0 once the full offsets hold.
   int reduced_offsets = 0;
+  /// Faces whose strain limit is still raised after a refinement that left them beyond it
+  /// (StrainLimit::fit_limits); 0 once every face's own limit holds.
+  int raised_limits = 0;
 };
 
 /// One line of JSON describing the record (for logs: `steps.jsonl`).

@@ -426,3 +426,28 @@ TEST(StrainLimit, RejectsBadArguments) {
   out_of_range(1, 1) = -1;
   EXPECT_EQ(status_of(make(v, out_of_range, limits, kBand, kStiffness)), Status::invalid_mesh);
 }
+
+TEST(StrainLimit, FitLimitsRaisesTheLimitOfAnOverstretchedFaceAndBringsItBack) {
+  Positions rest(3, 3);
+  rest << 0, 0, 0, 1, 0, 0, 0, 0.5, 0;
+  Faces faces(1, 3);
+  faces << 0, 1, 2;
+  StrainLimit term(rest, faces, {kLimit}, kBand, kStiffness);
+  const Vector beyond = as_dofs(mapped(rest, stretch(1.2, 1.0, 0.0)));  // σ₁ = 1.2 > 1.06
+  EXPECT_EQ(term.value(beyond), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(term.fit_limits(beyond), 1);
+  EXPECT_NEAR(term.limit(0), 1.2 + 0.5 * kBand, 1e-12);  // in the band: the barrier pulls back
+  EXPECT_TRUE(std::isfinite(term.value(beyond)));
+  EXPECT_GT(term.value(beyond), 0.0);
+  // Relaxed to σ₁ = 1.1 the limit comes halfway down (1.22 → 1.16); at σ₁ = 1.0 it returns
+  // to the face's own 1.06 after a few calls, and the face's energy is its own again.
+  const Vector relaxed = as_dofs(mapped(rest, stretch(1.1, 1.0, 0.0)));
+  EXPECT_EQ(term.fit_limits(relaxed), 1);
+  EXPECT_NEAR(term.limit(0), 1.1 + 0.5 * (1.2 + 0.5 * kBand - 1.1), 1e-12);
+  const Vector within = as_dofs(mapped(rest, stretch(1.0, 1.0, 0.0)));
+  int raised = 1;
+  for (int k = 0; k < 10 && raised > 0; ++k) raised = term.fit_limits(within);
+  EXPECT_EQ(raised, 0);
+  EXPECT_EQ(term.limit(0), kLimit);
+  EXPECT_EQ(term.value(beyond), std::numeric_limits<double>::infinity());
+}
