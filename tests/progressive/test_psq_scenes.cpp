@@ -70,6 +70,12 @@ TEST(PsqScenes, TwistIsIntersectionFreeOnEveryLevel) {
   expect_safe_and_converged(report);
 }
 
+TEST(PsqScenes, BalloonInflatedAgainstAPlateIsIntersectionFreeOnEveryLevel) {
+  const AccuracyReport report = run_accuracy(bundled("psq_balloon.json", {}));
+  ASSERT_EQ(report.rows.size(), 6u);
+  expect_safe_and_converged(report);
+}
+
 TEST(PsqScenes, StiffThinCanCrushStaysFiniteAndIntersectionFree) {
   const Scene scene =
       bundled("psq_can_crush.json",
