@@ -391,12 +391,14 @@ PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps);
  * Refines the current level l to l + 1 toward the prolongation P^l_{l+1}(x_l) (PSQ eq. 7) at
  * the same time and loads, so that later steps run on the finer level. Below the finest level
  * steps are previews: the proxy energy (the finest level's elastics through the prolongation,
- * PSQ eq. 2) with few Newton iterations each. With contact the finer level starts on the
- * coarse surface and moves toward P^l_{l+1}(x_l) only as far as CCD allows, so it never starts
- * intersecting (a simplification of PSQ §4.4's per-batch expansion). Progress phase "refine".
+ * PSQ eq. 2) with few Newton iterations each. With contact the finer level is built by PSQ
+ * §4.4's safe expansion: vertex splits batch by batch, each advanced toward P^l_{l+1}(x_l) only
+ * as far as additive CCD allows, so it never starts intersecting even where the prolonged state
+ * does; contact offsets and strain limits the start does not meet are relaxed to fit and
+ * restored by the following solves. Progress phase "refine".
  * Errors (the state is unchanged): PS_ERROR_OUT_OF_RANGE at the finest level;
- * PS_ERROR_INTERSECTING when the start on the coarse surface comes within a contact offset;
- * PS_ERROR_UNSUPPORTED when it breaks a strain limit (strain-limit relaxation is not in yet).
+ * PS_ERROR_INTERSECTING when no safe position is found for a split;
+ * PS_ERROR_NUMERICAL when the refined state has no finite energy.
  */
 PS_API int32_t ps_sim_refine(ps_sim* sim);
 

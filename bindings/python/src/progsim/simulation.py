@@ -540,8 +540,8 @@ class Simulation(NativeObject):
 
         Raises:
             OutOfRangeError: already at the finest level (the state is unchanged).
-            IntersectingError: with contact, the finer level's start on the coarse surface
-                comes within a contact offset; the state is unchanged.
+            IntersectingError: with contact, no safe position was found for a vertex split
+                (PSQ §4.4's safe expansion); the state is unchanged.
         """
         self._run(lib.ps_sim_refine, progress=progress)
 

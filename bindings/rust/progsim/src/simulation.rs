@@ -268,8 +268,8 @@ impl<'h> Simulation<'h> {
     ///
     /// # Errors
     /// [`Status::OutOfRange`] at the finest level; [`Status::Intersecting`] when, with contact,
-    /// the finer level's start on the coarse surface comes within a contact offset. The state
-    /// is unchanged on error.
+    /// no safe position is found for a vertex split (PSQ §4.4's safe expansion). The state is
+    /// unchanged on error.
     pub fn refine(&mut self) -> Result<()> {
         let raw = self.handle()?;
         // SAFETY: live simulation.
