@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <istream>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -77,16 +78,25 @@ void check_off_header_counts(const std::string& path) {
   if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0 || keyword[0] == 'n')
     return;
   const std::string vertices = next_off_token(in);
-  // CGAL's binary OFF header parser overflows int on corrupt counts (found by the fuzzer).
-  if (vertices == "BINARY")
+  // CGAL's binary OFF header parser overflows int on corrupt counts (found by the fuzzer). CGAL
+  // reads the word as its leading letters and digits ("BINARY\x0f" is binary too).
+  const auto word_end = std::find_if(vertices.begin(), vertices.end(), [](char c) {
+    return !std::isalnum(static_cast<unsigned char>(c));
+  });
+  if (std::string(vertices.begin(), word_end) == "BINARY")
     fail(Status::io_error, path +
                                ": binary OFF is not supported; save the mesh as text OFF, "
                                "OBJ or PLY");
   const std::string faces = next_off_token(in);
-  std::uintmax_t nv = 0, nf = 0;
+  const std::string edges = next_off_token(in);
+  std::uintmax_t nv = 0, nf = 0, ne = 0;
   if (std::from_chars(vertices.data(), vertices.data() + vertices.size(), nv).ec != std::errc() ||
       std::from_chars(faces.data(), faces.data() + faces.size(), nf).ec != std::errc())
-    return;  // "BINARY" or not a number: CGAL decides
+    return;  // not a number: CGAL decides
+  // The edge count is not used, but CGAL doubles it in an int (the fuzzer found the overflow).
+  if (std::from_chars(edges.data(), edges.data() + edges.size(), ne).ec == std::errc() &&
+      ne > static_cast<std::uintmax_t>(std::numeric_limits<int>::max() / 2))
+    fail(Status::io_error, path + ": the header declares " + edges + " edges (corrupt header)");
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) return;

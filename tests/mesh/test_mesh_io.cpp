@@ -193,6 +193,16 @@ TEST_F(MeshIo, RefusesBinaryOff) {
   // CGAL's binary OFF header parser overflows int on a corrupt count (found by the fuzzer).
   const std::string path = write("binary.off", std::string("OFF BINARY\n") + "\x44\x66\x66\x44");
   expect_error([&] { read_mesh(path); }, Status::io_error, {"binary.off", "binary OFF"});
+  // CGAL reads the word up to its first non-alphanumeric byte: "BINARY\x0f" is binary too.
+  const std::string glued = write("glued.off", std::string("OFF BINARY\x0f\n") + "\x44\x66");
+  expect_error([&] { read_mesh(glued); }, Status::io_error, {"glued.off", "binary OFF"});
+}
+
+TEST_F(MeshIo, RejectsAnOffHeaderWhoseEdgeCountOverflows) {
+  // CGAL doubles the (unused) edge count in an int (found by the fuzzer).
+  const std::string path =
+      write("edges.off", "OFF\n3 1 1147495276\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_error([&] { read_mesh(path); }, Status::io_error, {"edges.off", "1147495276 edges"});
 }
 
 TEST_F(MeshIo, NeverCrashesOnTruncatedOrScrambledFiles) {
