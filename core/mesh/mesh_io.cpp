@@ -13,11 +13,11 @@
 #include <filesystem>
 #include <fstream>
 #include <istream>
-#include <limits>
 #include <sstream>
 #include <vector>
 
 #include "common/error.hpp"
+#include "mesh/off_reader.hpp"
 
 namespace progsim {
 namespace {
@@ -56,103 +56,6 @@ Format format_of(const std::string& path) {
   if (ext == ".off") return Format::off;
   if (ext == ".ply") return Format::ply;
   fail(Status::io_error, path + ": unknown mesh format '" + ext + "' (known: .obj, .off, .ply)");
-}
-
-/// The next whitespace-separated token of an OFF file outside "#" comments ("" at the end).
-std::string next_off_token(std::istream& in) {
-  std::string token;
-  while (in >> token) {
-    if (token[0] != '#') return token;
-    std::getline(in, token);
-  }
-  return "";
-}
-
-/// CGAL's OFF reader allocates the element counts of the header before reading any element,
-/// so a corrupt header could claim gigabytes. Rejects counts that the file is too short to
-/// hold: in text, a vertex takes at least 6 bytes ("0 0 0\n") and a face at least 2 ("0\n").
-/// Binary OFF is refused; nOFF headers are left to CGAL.
-void check_off_header_counts(const std::string& path) {
-  std::ifstream in(path);
-  const std::string keyword = next_off_token(in);
-  if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0 || keyword[0] == 'n')
-    return;
-  const std::string vertices = next_off_token(in);
-  // CGAL's binary OFF header parser overflows int on corrupt counts (found by the fuzzer). CGAL
-  // reads the word as its leading letters and digits ("BINARY\x0f" is binary too).
-  const auto word_end = std::find_if(vertices.begin(), vertices.end(), [](char c) {
-    return !std::isalnum(static_cast<unsigned char>(c));
-  });
-  if (std::string(vertices.begin(), word_end) == "BINARY")
-    fail(Status::io_error, path +
-                               ": binary OFF is not supported; save the mesh as text OFF, "
-                               "OBJ or PLY");
-  const std::string faces = next_off_token(in);
-  const std::string edges = next_off_token(in);
-  std::uintmax_t nv = 0, nf = 0, ne = 0;
-  if (std::from_chars(vertices.data(), vertices.data() + vertices.size(), nv).ec != std::errc() ||
-      std::from_chars(faces.data(), faces.data() + faces.size(), nf).ec != std::errc())
-    return;  // not a number: CGAL decides
-  // The edge count is not used, but CGAL doubles it in an int (the fuzzer found the overflow).
-  if (std::from_chars(edges.data(), edges.data() + edges.size(), ne).ec == std::errc() &&
-      ne > static_cast<std::uintmax_t>(std::numeric_limits<int>::max() / 2))
-    fail(Status::io_error, path + ": the header declares " + edges + " edges (corrupt header)");
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) return;
-  if (nv <= size / 6 && nf <= size / 2 && 6 * nv + 2 * nf <= size) return;
-  fail(Status::io_error, path + ": the header declares " + std::to_string(nv) + " vertices and " +
-                             std::to_string(nf) + " faces, more than the file's " +
-                             std::to_string(size) +
-                             " bytes can hold (truncated file or corrupt header)");
-}
-
-/// The non-empty lines of a text file with "#" comments removed.
-std::vector<std::string> content_lines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) {
-    line = line.substr(0, line.find('#'));
-    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
-  }
-  return lines;
-}
-
-/// CGAL's OFF scanner reads face indices as doubles and casts them to size_t, which is
-/// undefined for negative or huge values (found by the fuzz target): check every index of a
-/// text OFF file is a whole number in [0, |V|) first. Line layout: keyword, counts, |V| vertex
-/// lines, then face lines "k i₁ … i_k [colour]". Layouts it does not know are left to CGAL.
-void check_off_face_indices(const std::string& path) {
-  const std::vector<std::string> lines = content_lines(path);
-  if (lines.size() < 2) return;
-  std::istringstream header(lines[0] + " " + lines[1]);
-  std::string keyword;
-  long long nv = 0, nf = 0;
-  header >> keyword;
-  if (keyword.find("OFF") == std::string::npos || keyword[0] == 'n' || !(header >> nv >> nf) ||
-      nv < 0 || nf < 0)
-    return;
-  const std::size_t first_face = 2 + static_cast<std::size_t>(nv);
-  for (std::size_t f = 0; f < static_cast<std::size_t>(nf) && first_face + f < lines.size(); ++f) {
-    std::istringstream words(lines[first_face + f]);
-    std::string token;
-    long long k = 0;
-    std::string count_text;
-    words >> count_text;
-    const auto [count_end, count_error] =
-        std::from_chars(count_text.data(), count_text.data() + count_text.size(), k);
-    if (count_error != std::errc() || count_end != count_text.data() + count_text.size() || k < 0)
-      fail(Status::invalid_mesh, path + ": face " + std::to_string(f) + " has '" + count_text +
-                                     "' vertices, not a whole number");
-    for (long long i = 0; i < k && words >> token; ++i) {
-      long long index = -1;
-      const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), index);
-      if (error == std::errc() && end == token.data() + token.size() && index >= 0 && index < nv)
-        continue;
-      fail(Status::invalid_mesh, path + ": face " + std::to_string(f) + " references vertex '" +
-                                     token + "', not an index in [0, " + std::to_string(nv) + ")");
-    }
-  }
 }
 
 /// Rejects a PLY "element NAME COUNT" line whose count is not a whole number the file can
@@ -213,10 +116,6 @@ void check_ply_header(const std::string& path) {
 
 /// Rejects headers that would make CGAL's readers misbehave instead of failing cleanly.
 void check_header(const std::string& path, Format format) {
-  if (format == Format::off) {
-    check_off_header_counts(path);
-    check_off_face_indices(path);
-  }
   if (format == Format::ply) check_ply_header(path);
 }
 
@@ -226,20 +125,12 @@ std::string parse_failure(Format format) {
     case Format::obj:
       return "cannot parse the file as OBJ (malformed or truncated)";
     case Format::off:
-      // CGAL's OFF reader reports an out-of-range face index as a parse failure.
-      return "cannot parse the file as OFF (malformed or truncated, or a face index out of "
-             "range)";
+      return "cannot parse the file as OFF";
     case Format::ply:
       return "cannot parse the file as PLY (malformed or truncated)";
   }
   return "cannot parse the file";
 }
-
-/// Points and polygons as read from a file, before any checks.
-struct Soup {
-  Positions vertices;
-  Polygons polygons;
-};
 
 /// Copies CGAL-side points (anything with p[0..2]) into a (|V| × 3) array.
 template <class Point>
@@ -250,8 +141,13 @@ Positions to_positions(const std::vector<Point>& points) {
   return vertices;
 }
 
-/// Reads with CGAL. Returns false on a parse failure; `soup` then holds what was read so far.
-bool read_soup(const std::string& path, Format format, Soup& soup) {
+/// Reads OFF with read_off, OBJ and PLY with CGAL. Returns false on a parse failure; `soup`
+/// then holds what was read so far.
+bool read_soup(const std::string& path, Format format, PolygonSoup& soup) {
+  if (format == Format::off) {
+    soup = read_off(path);
+    return true;
+  }
   // CGAL's PLY reader would print to std::cerr by default.
   const auto quiet = CGAL::parameters::verbose(false);
   if (format == Format::obj) {
@@ -267,7 +163,7 @@ bool read_soup(const std::string& path, Format format, Soup& soup) {
 }
 
 /// invalid_mesh if a polygon references a vertex that does not exist.
-void check_index_range(const std::string& path, const Soup& soup) {
+void check_index_range(const std::string& path, const PolygonSoup& soup) {
   const std::size_t n = soup.vertices.rows();
   for (std::size_t f = 0; f < soup.polygons.size(); ++f) {
     for (const std::size_t v : soup.polygons[f]) {
@@ -282,7 +178,7 @@ void check_index_range(const std::string& path, const Soup& soup) {
 }
 
 /// invalid_mesh for polygons that are not triangles or meshes too large for int indices.
-void check_triangles(const std::string& path, const Soup& soup) {
+void check_triangles(const std::string& path, const PolygonSoup& soup) {
   if (soup.vertices.rows() > INT_MAX || soup.polygons.size() > INT_MAX)
     fail(Status::invalid_mesh,
          path + ": more than " + std::to_string(INT_MAX) + " vertices or faces");
@@ -310,10 +206,12 @@ TriangleMesh read_mesh(const std::string& path) {
     fail(Status::io_error, path + ": no such file (or not a regular file)");
   if (!std::ifstream(path)) fail(Status::io_error, path + ": cannot open the file for reading");
   check_header(path, format);
-  Soup soup;
+  PolygonSoup soup;
   bool ok = false;
   try {
     ok = read_soup(path, format, soup);
+  } catch (const Error&) {  // read_off's own errors name the line already
+    throw;
   } catch (const std::exception& e) {  // CGAL assertions, allocation failures
     fail(Status::io_error, path + ": " + parse_failure(format) + ": " + e.what());
   }

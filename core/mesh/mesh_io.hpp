@@ -1,5 +1,6 @@
 #pragma once
-/// @file Reading and writing triangle meshes in OBJ, OFF and PLY (through CGAL's IO).
+/// @file Reading and writing triangle meshes in OBJ, OFF and PLY (CGAL's IO, except for
+/// reading OFF: see off_reader.hpp).
 #include <string>
 
 #include "mesh/triangle_mesh.hpp"
@@ -11,9 +12,8 @@ namespace progsim {
 /// The result is not validated: call validate_mesh().
 /// Throws Error(Status::io_error) if the file cannot be read or parsed,
 /// Error(Status::invalid_mesh) if it holds non-triangle faces or out-of-range indices.
-/// Messages start with the path and name the face. Caveats of CGAL's parsers: OFF rejects
-/// out-of-range indices itself (io_error); OBJ "nan"/"inf" coordinates are read (and left to
-/// validate_mesh), but in ASCII OFF and PLY they are parse errors (io_error).
+/// Messages start with the path and name the face. OBJ and OFF "nan"/"inf" coordinates are
+/// read (and left to validate_mesh); in PLY (CGAL's parser) they are parse errors (io_error).
 TriangleMesh read_mesh(const std::string& path);
 
 /// Writes a mesh to .obj, .off or .ply (format from the extension): text with 17 significant

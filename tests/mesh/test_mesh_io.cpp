@@ -126,8 +126,8 @@ TEST_F(MeshIo, RejectsBadIndicesAndPolygonsAsInvalidMeshes) {
   // Vertex 9 of 4: CGAL's OBJ reader fails on it; the message still names the face.
   expect_read_error("bad_index_far.obj", Status::invalid_mesh,
                     {"bad_index_far.obj: face 1 references vertex 8"});
-  // CGAL's OFF scanner would cast a bad index to size_t (undefined for negative or huge
-  // values): it is checked before CGAL reads the file.
+  // read_off checks each index is a whole number in range (CGAL's OFF scanner cast them
+  // to size_t, undefined for negative or huge values).
   expect_read_error("bad_index.off", Status::invalid_mesh,
                     {"bad_index.off: face 1 references vertex '7'", "[0, 4)"});
   expect_read_error("huge_index.off", Status::invalid_mesh,
@@ -184,25 +184,62 @@ TEST_F(MeshIo, ReportsUnwritablePaths) {
 }
 
 TEST_F(MeshIo, RejectsAnOffHeaderClaimingMoreThanTheFileHolds) {
-  // Without the check, CGAL would allocate 2e9 points before noticing the missing data.
+  // Without the check, the reader would allocate 2e9 points before noticing the missing data.
   const std::string path = write("huge.off", "OFF\n2000000000 1 0\n0 0 0\n3 0 0 0\n");
   expect_error([&] { read_mesh(path); }, Status::io_error, {"huge.off", "2000000000 vertices"});
 }
 
-TEST_F(MeshIo, RefusesBinaryOff) {
-  // CGAL's binary OFF header parser overflows int on a corrupt count (found by the fuzzer).
+TEST_F(MeshIo, RefusesBinaryAndHigherDimensionalOff) {
   const std::string path = write("binary.off", std::string("OFF BINARY\n") + "\x44\x66\x66\x44");
   expect_error([&] { read_mesh(path); }, Status::io_error, {"binary.off", "binary OFF"});
-  // CGAL reads the word up to its first non-alphanumeric byte: "BINARY\x0f" is binary too.
   const std::string glued = write("glued.off", std::string("OFF BINARY\x0f\n") + "\x44\x66");
   expect_error([&] { read_mesh(glued); }, Status::io_error, {"glued.off", "binary OFF"});
+  const std::string four_d = write("4d.off", "4OFF\n1 0 0\n0 0 0 1\n");
+  expect_error([&] { read_mesh(four_d); }, Status::io_error,
+               {"4d.off: cannot parse the file as OFF (line 1", "'4OFF'", "not supported"});
 }
 
-TEST_F(MeshIo, RejectsAnOffHeaderWhoseEdgeCountOverflows) {
-  // CGAL doubles the (unused) edge count in an int (found by the fuzzer).
-  const std::string path =
-      write("edges.off", "OFF\n3 1 1147495276\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-  expect_error([&] { read_mesh(path); }, Status::io_error, {"edges.off", "1147495276 edges"});
+TEST_F(MeshIo, RejectsAnOffFileWithoutItsKeyword) {
+  // Found by the fuzzer: a control byte glued to the keyword ("\x02OFF\x08") reached
+  // undefined behaviour in CGAL's OFF scanner.
+  const std::string path = write("glued_keyword.off", "\x02OFF\x083 1 0\n0 0 0\n1 0 0\n0 1 0\n");
+  expect_error([&] { read_mesh(path); }, Status::io_error,
+               {"glued_keyword.off: cannot parse the file as OFF (line 1",
+                "does not start with the keyword OFF"});
+}
+
+TEST_F(MeshIo, ReadsOffVariantsAndIgnoresTheEdgeCountAndExtraValues) {
+  // The edge count is unused (CGAL doubled it in an int: a fuzzer finding); colours and
+  // normals after the coordinates and the face indices are skipped; counts may follow the
+  // keyword on its line; nan reaches validate_mesh.
+  const std::string path = write("variants.off",
+                                 "CNOFF 3 1 1147495276 # counts on the keyword line\n"
+                                 "0 0 0  0 0 1  255 0 0\n"
+                                 "+1 0 0 0 0 1  0 255 0\n"
+                                 "0 nan 0 0 0 1  0 0 255\n"
+                                 "3 0 1 2  0.5 0.5 0.5\n");
+  const TriangleMesh mesh = read_mesh(path);
+  ASSERT_EQ(mesh.num_vertices(), 3);
+  ASSERT_EQ(mesh.num_faces(), 1);
+  EXPECT_EQ(mesh.vertices(1, 0), 1.0);
+  EXPECT_TRUE(std::isnan(mesh.vertices(2, 1)));
+  EXPECT_EQ(mesh.faces(0, 2), 2);
+}
+
+TEST_F(MeshIo, NamesTheLineOfAMalformedOffFile) {
+  const std::string truncated = write("truncated.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n");
+  expect_error(
+      [&] { read_mesh(truncated); }, Status::io_error,
+      {"truncated.off: cannot parse the file as OFF (line 4", "before vertex 2", "truncated"});
+  const std::string bad_number = write("bad_number.off", "OFF\n3 1 0\n0 0 0\n1 0x 0\n0 1 0\n");
+  expect_error([&] { read_mesh(bad_number); }, Status::io_error,
+               {"(line 4: vertex 1 coordinate '0x' is not a number"});
+  const std::string short_face = write("short_face.off", "OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n");
+  expect_error([&] { read_mesh(short_face); }, Status::io_error,
+               {"(line 6: face 0 declares 3 vertices but lists 2"});
+  const std::string bad_counts = write("bad_counts.off", "OFF\n3 -1 0\n");
+  expect_error([&] { read_mesh(bad_counts); }, Status::io_error,
+               {"(line 2: expected the counts '|V| |F| [|E|]' as whole numbers"});
 }
 
 TEST_F(MeshIo, NeverCrashesOnTruncatedOrScrambledFiles) {
