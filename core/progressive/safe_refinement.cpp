@@ -132,7 +132,7 @@ class Expansion {
     build_mesh();  // the new vertices present, at their partners
     const std::vector<char> done = perturb_along_targets(batch);
     perturb(batch, sizes, done, stats);
-    build_mesh();
+    refresh_positions(movers);
     advance(movers, g0, stats);
     ++stats.batches;
     stats.splits += static_cast<int>(batch.size());
@@ -196,6 +196,16 @@ class Expansion {
       obstacles.push_back({&around_.obstacle_positions, &around_.obstacle_faces, 0.0});
     mesh_ = build_collision_mesh(shell, faces, offset, friction, obstacles);
     points_ = mesh_.rest;  // the current positions of every collision vertex
+  }
+
+  /// Copies the positions of the finer-level vertices `moved` into the collision mesh (its
+  /// topology is unchanged: only positions moved since build_mesh()).
+  void refresh_positions(const std::vector<int>& moved) {
+    for (int v : moved) {
+      const int c = compact_[v];
+      mesh_.rest.row(c) = x_.row(v);
+      points_.row(c) = x_.row(v);
+    }
   }
 
   /// Moving the split's new vertex j by `size` made no intersection in its patch (its `before`
