@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 4
+#define PS_VERSION_MINOR 5
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -63,7 +63,8 @@ PS_API const char* ps_version_string(void);
 /**
  * Checks that the library loaded at run time can serve a caller compiled against header
  * version `header_version` (pass PS_VERSION_HEADER). Same major version and a library minor
- * version at least the header's → PS_OK; otherwise PS_ERROR_VERSION_MISMATCH with both
+ * version at least the header's → PS_OK; before 1.0 the minor versions must be equal (a 0.x
+ * minor may grow the structs the library fills). Otherwise PS_ERROR_VERSION_MISMATCH with both
  * versions in ps_last_error(). Bindings call it once when they load. Thread-safe.
  */
 PS_API int32_t ps_check_version(int32_t header_version);
@@ -427,6 +428,23 @@ PS_API int32_t ps_sim_get_positions(const ps_sim* sim, int32_t level, double* ou
  *  to `path`; the extension picks the format (.obj, .off, .ply). */
 PS_API int32_t ps_sim_write_mesh(const ps_sim* sim, int32_t level, const char* path);
 
+/** How a level's start was built from the coarser level by safe refinement (PSQ §4.4);
+ *  all zeros for level 0 and for scenes without contact (the prolonged state is used). */
+typedef struct ps_refinement_stats {
+  int32_t batches;               /**< colour batches of vertex splits */
+  int32_t splits;                /**< vertex splits over all batches */
+  int32_t random_directions;     /**< splits whose target direction was unsafe (PSQ Alg. 5) */
+  int32_t rounds;                /**< additive-CCD advancement rounds over all batches */
+  int32_t stopped_vertices;      /**< moving vertices stopped by contact before their target */
+  int32_t relaxed_vertices;      /**< stopped vertices relaxed locally (PSQ §4.4.3) */
+  int32_t relaxation_iterations; /**< Newton iterations of those relaxations */
+  int32_t inside_pairs; /**< contact pairs left within their offset, opened by later solves */
+  /** 1 − Σ‖x̂ − x‖ / Σ‖x̂ − x₀‖ over the moving vertices: 1 when all reached the prolonged
+   *  target x̂, 0 when none moved. */
+  double reached;
+  double min_gap; /**< smallest gap d − ξ of contact pairs outside their offsets, m */
+} ps_refinement_stats;
+
 /** Per-level statistics, accumulated over every step and settle at that level. */
 typedef struct ps_level_stats {
   int32_t level;             /**< which level */
@@ -442,9 +460,15 @@ typedef struct ps_level_stats {
    *  level is at equilibrium (ps_sim_settle() there). */
   double error_rms;
   double error_max;
-  int32_t settles;       /**< solves at a fixed time (ps_sim_settle()) */
-  int32_t equilibrium;   /**< 1 if the last solve met the tolerance */
-  double refine_seconds; /**< wall time refining the coarser level into this one, s */
+  int32_t settles;                /**< solves at a fixed time (ps_sim_settle()) */
+  int32_t equilibrium;            /**< 1 if the last solve met the tolerance */
+  double refine_seconds;          /**< wall time refining the coarser level into this one, s */
+  ps_refinement_stats refinement; /**< how the level's start was built */
+  /** Contact pairs whose offset is still lowered after the last solve (where contact kept a
+   *  split from opening fully; the state is intersection-free but thinner there); 0 normally. */
+  int32_t reduced_offsets;
+  /** Faces whose strain limit is still raised after the last solve; 0 normally. */
+  int32_t raised_limits;
 } ps_level_stats;
 
 /** Statistics of `level` into *out. Levels not visited yet report zeros (NaN errors). */
@@ -476,6 +500,9 @@ typedef struct ps_accuracy_row {
    *  progressive result over the finest bounding-box diagonal: RMS and max over vertices. */
   double error_rms;
   double error_max;
+  int32_t intersecting_pairs; /**< face pairs crossing in the final state (CGAL exact check) */
+  /** 1 if the level ended at equilibrium (progressive) or its last solve converged (direct). */
+  int32_t converged;
 } ps_accuracy_row;
 
 /**

@@ -63,8 +63,9 @@ PS_API int32_t ps_accuracy_get_row(const ps_accuracy* accuracy, int32_t index,
       api_fail(PS_ERROR_OUT_OF_RANGE,
                "row " + std::to_string(index) + " does not exist (" + std::to_string(n) + " rows)");
     const AccuracyRow& r = accuracy->report.rows[index];
-    *out = ps_accuracy_row{method_of(r.method), r.level,          r.vertices,  r.newton_iterations,
-                           r.seconds,           r.refine_seconds, r.error_rms, r.error_max};
+    *out = ps_accuracy_row{
+        method_of(r.method), r.level,     r.vertices,  r.newton_iterations,  r.seconds,
+        r.refine_seconds,    r.error_rms, r.error_max, r.intersecting_pairs, r.converged ? 1 : 0};
   });
 }
 

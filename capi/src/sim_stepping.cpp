@@ -21,6 +21,14 @@ void report_progress(const ps_sim& sim, int32_t done, int32_t total, const char*
                                      std::to_string(total));
 }
 
+/// The ABI's copy of a level's refinement statistics.
+ps_refinement_stats refinement_stats(const SafeRefinementStats& s) {
+  return ps_refinement_stats{
+      s.batches,          s.splits,           s.random_directions,     s.rounds,
+      s.stopped_vertices, s.relaxed_vertices, s.relaxation_iterations, s.inside_pairs,
+      s.reached,          s.min_gap};
+}
+
 }  // namespace
 }  // namespace progsim::capi
 
@@ -123,6 +131,9 @@ PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level
     stats.settles = r.settles;
     stats.refine_seconds = r.refine_seconds;
     stats.equilibrium = r.equilibrium ? 1 : 0;
+    stats.refinement = refinement_stats(r.refinement);
+    stats.reduced_offsets = r.reduced_offsets;
+    stats.raised_limits = r.raised_limits;
     *out = stats;
   });
 }

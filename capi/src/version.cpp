@@ -19,7 +19,11 @@ PS_API const char* ps_version_string(void) {
 PS_API int32_t ps_check_version(int32_t header_version) {
   return guarded(nullptr, "ps_check_version", [&] {
     const int32_t major = header_version / 10000, minor = header_version / 100 % 100;
-    if (header_version < 0 || major != PS_VERSION_MAJOR || minor > PS_VERSION_MINOR)
+    // Before 1.0 a minor version may grow the structs the library fills (ps_level_stats in
+    // 0.5): an older caller's buffer would be too small, so the minor must match too.
+    const bool compatible = major == PS_VERSION_MAJOR &&
+                            (major == 0 ? minor == PS_VERSION_MINOR : minor <= PS_VERSION_MINOR);
+    if (header_version < 0 || !compatible)
       api_fail(PS_ERROR_VERSION_MISMATCH, "the caller was built against progsim header version " +
                                               std::to_string(header_version) +
                                               " but the library is " +

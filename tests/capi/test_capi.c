@@ -50,6 +50,9 @@ static void test_version(void) {
   CHECK(ps_check_version(PS_VERSION_HEADER) == PS_OK);
   CHECK_ERROR(ps_check_version(PS_VERSION_HEADER + 10000), PS_ERROR_VERSION_MISMATCH,
               ps_last_error(), "rebuild the caller");
+  /* Before 1.0 an older minor's structs are smaller than the library's: refused. */
+  CHECK_ERROR(ps_check_version(PS_VERSION_HEADER - 100), PS_ERROR_VERSION_MISMATCH,
+              ps_last_error(), "rebuild the caller");
   CHECK(strcmp(ps_status_name(PS_ERROR_INVALID_MESH), "PS_ERROR_INVALID_MESH") == 0);
 }
 
@@ -367,6 +370,29 @@ static void test_levels(void) {
 /* A progressive (PSQ) simulation through the ABI: a cloth hanging from its top row (in its own
  * plane, so the equilibrium is a stretched cloth), previewed on level 0, refined to the finest
  * level and settled there; errors of the coarse levels against the converged result. */
+/* With self-contact, refinement is PSQ §4.4's safe expansion: every split of the hierarchy's
+ * record between the two levels is made, in batches, and its statistics reach the ABI. */
+static void check_refinement_stats(const ps_hierarchy* h, ps_sim_def def) {
+  def.effects |= PS_EFFECT_CONTACT;
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
+  if (!sim) return;
+  int32_t equilibrium = 0;
+  size_t coarse = 0, fine = 0;
+  CHECK(ps_hierarchy_level_size(h, 0, &coarse, NULL) == PS_OK);
+  CHECK(ps_hierarchy_level_size(h, 1, &fine, NULL) == PS_OK);
+  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
+  CHECK(ps_sim_refine(sim) == PS_OK);
+  CHECK(ps_sim_settle(sim, 300, &equilibrium) == PS_OK && equilibrium == 1);
+  ps_level_stats stats;
+  CHECK(ps_sim_get_level_stats(sim, 1, &stats) == PS_OK);
+  CHECK((size_t)stats.refinement.splits == fine - coarse && stats.refinement.batches >= 1);
+  CHECK(stats.refinement.rounds >= stats.refinement.batches);
+  CHECK(stats.refinement.reached > 0.0 && stats.refinement.reached <= 1.0);
+  CHECK(stats.refinement.min_gap > 0.0 && stats.reduced_offsets == 0);
+  ps_sim_destroy(sim);
+}
+
 static void test_progressive(void) {
   int32_t top_row[21];
   for (int i = 0; i < 21; ++i) top_row[i] = 420 + i; /* y = 1 in square_cloth.obj */
@@ -412,7 +438,11 @@ static void test_progressive(void) {
   CHECK(ps_sim_get_level_stats(sim, 1, &stats) == PS_OK && stats.refine_seconds > 0.0);
   CHECK(stats.error_max >= stats.error_rms && stats.error_max < 0.05);
   CHECK(ps_sim_get_level_stats(sim, 2, &stats) == PS_OK && stats.error_max == 0.0);
+  /* No contact: the prolonged state is the start, no safe expansion ran. */
+  CHECK(stats.refinement.batches == 0 && stats.refinement.splits == 0);
+  CHECK(stats.reduced_offsets == 0 && stats.raised_limits == 0);
   CHECK_ERROR(ps_sim_refine(sim), PS_ERROR_OUT_OF_RANGE, ps_sim_last_error(sim), "finest");
+  check_refinement_stats(h, def);
   CHECK_ERROR(ps_sim_settle(sim, 0, NULL), PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),
               "max_solves");
   ps_sim_destroy(sim);
@@ -431,8 +461,10 @@ static void test_accuracy(void) {
   CHECK(ps_accuracy_get_row(accuracy, 0, &row) == PS_OK);
   CHECK(row.method == PS_METHOD_PROGRESSIVE && row.level == 0 && row.seconds > 0.0);
   CHECK(row.error_max > 0.0 && row.error_max < 0.1);
+  CHECK(row.intersecting_pairs == 0 && row.converged == 1);
   CHECK(ps_accuracy_get_row(accuracy, 5, &row) == PS_OK);
   CHECK(row.method == PS_METHOD_DIRECT && row.level == 2 && row.vertices == 625);
+  CHECK(row.intersecting_pairs == 0 && row.converged == 1);
   CHECK_ERROR(ps_accuracy_get_row(accuracy, 6, &row), PS_ERROR_OUT_OF_RANGE, ps_last_error(),
               "6 rows");
   char dir[4096];

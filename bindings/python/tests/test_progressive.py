@@ -43,6 +43,8 @@ def test_preview_refine_and_converge(hanging):
     sim.refine()
     assert sim.settle(50)
     assert sim.level_stats(1).refine_seconds > 0.0
+    # No contact: the prolonged state is the start, no safe expansion ran.
+    assert sim.level_stats(1).refinement.splits == 0 and sim.level_stats(1).reduced_offsets == 0
     coarse = sim.level_stats(0)
     assert 0.0 < coarse.error_max < 0.05 and coarse.error_rms <= coarse.error_max
     assert sim.level_stats(2).error_max == 0.0
@@ -51,6 +53,25 @@ def test_preview_refine_and_converge(hanging):
     assert sim.positions()[:, 1].min() < rest[:, 1].min()  # it stretched under gravity
     with pytest.raises(progsim.OutOfRangeError, match="finest"):
         sim.refine()
+
+
+def test_refinement_with_contact_reports_its_splits():
+    """With self-contact, refinement is PSQ §4.4's safe expansion; its statistics reach Python."""
+    with progsim.Hierarchy.from_file(
+        MESH, coarse_vertex_counts=[40, 120], pinned=TOP_ROW
+    ) as hierarchy:
+        effects = ["membrane", "bending", "gravity", "contact"]
+        with progsim.Simulation(
+            hierarchy, mode="quasistatic", time_step=1.0, pinned=TOP_ROW, effects=effects
+        ) as sim:
+            sim.step_preview(1)
+            sim.refine()
+            assert sim.settle(300)
+            stats = sim.level_stats(1).refinement
+            fine, coarse = (hierarchy.level_size(level)[0] for level in (1, 0))
+            assert stats.splits == fine - coarse and stats.batches >= 1
+            assert 0.0 < stats.reached <= 1.0 and stats.min_gap > 0.0
+            assert isinstance(stats, progsim.RefinementStats)
 
 
 def test_pins_must_be_the_hierarchys(hanging):
@@ -81,6 +102,7 @@ def test_accuracy_report(tmp_path):
         assert report.rows[2].error_max == 0.0  # the reference itself
         assert report.rows[0].seconds < report.rows[2].seconds
         assert all(row.vertices > 0 and row.newton_iterations > 0 for row in report.rows)
+        assert all(row.intersecting_pairs == 0 and row.converged for row in report.rows)
         report.write(tmp_path / "plate")
     assert "progressive level 1" in phases and "direct level 2" in phases
     written = sorted(p.name for p in (tmp_path / "plate").iterdir())

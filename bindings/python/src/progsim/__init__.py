@@ -44,7 +44,7 @@ from ._errors import (  # noqa: F401 - re-exported through __all__
 )
 
 #: Version of this Python package.
-__version__ = "0.4.0"
+__version__ = "0.5.0"
 
 #: The header version these bindings were compiled against (major·10000 + minor·100 + patch).
 HEADER_VERSION: int = _lib.PS_VERSION_HEADER
@@ -54,11 +54,18 @@ if _lib.ps_check_version(HEADER_VERSION) != _lib.PS_OK:
 
 from .accuracy import Accuracy, AccuracyRow  # noqa: E402 - after the version check
 from .hierarchy import Hierarchy  # noqa: E402
-from .simulation import EFFECTS, MODES, PARAMETERS, LevelStats, Simulation  # noqa: E402
+from .simulation import (  # noqa: E402
+    EFFECTS,
+    MODES,
+    PARAMETERS,
+    LevelStats,
+    RefinementStats,
+    Simulation,
+)
 
 
 def library_version() -> str:
-    """The loaded libprogsim's version as text, e.g. ``"0.4.0"``."""
+    """The loaded libprogsim's version as text, e.g. ``"0.5.0"``."""
     return _ffi.string(_lib.ps_version_string()).decode("ascii")
 
 
@@ -73,6 +80,7 @@ __all__ = [
     "Hierarchy",
     "Simulation",
     "LevelStats",
+    "RefinementStats",
     "EFFECTS",
     "MODES",
     "PARAMETERS",

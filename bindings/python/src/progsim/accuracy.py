@@ -29,6 +29,9 @@ class AccuracyRow:
     refine_seconds: float  #: s, building the level's start from the coarser level
     error_rms: float  #: RMS distance to the converged finest result / bbox diagonal
     error_max: float  #: max distance to the converged finest result / bbox diagonal
+    intersecting_pairs: int  #: face pairs crossing in the final state (CGAL exact check)
+    #: the level ended at equilibrium (progressive) or its last solve converged (direct)
+    converged: bool
 
 
 class Accuracy(NativeObject):
@@ -86,6 +89,8 @@ class Accuracy(NativeObject):
             refine_seconds=float(row.refine_seconds),
             error_rms=float(row.error_rms),
             error_max=float(row.error_max),
+            intersecting_pairs=int(row.intersecting_pairs),
+            converged=bool(row.converged),
         )
 
     def write(self, directory: PathLike) -> None:

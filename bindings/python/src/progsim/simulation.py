@@ -26,7 +26,7 @@ from ._native import (
 from ._progsim_cffi import ffi, lib
 from .hierarchy import Hierarchy, PathLike
 
-__all__ = ["Simulation", "LevelStats", "EFFECTS", "MODES", "PARAMETERS"]
+__all__ = ["Simulation", "LevelStats", "RefinementStats", "EFFECTS", "MODES", "PARAMETERS"]
 
 #: Effect names and their ``ps_effect`` bits.
 EFFECTS: Dict[str, int] = {
@@ -82,6 +82,28 @@ _INTEGER_PARAMETERS = frozenset(
 
 
 @dataclass(frozen=True)
+class RefinementStats:
+    """How a level's start was built from the coarser level by safe refinement (PSQ §4.4;
+    ``ps_refinement_stats``); all zeros for level 0 and for scenes without contact."""
+
+    batches: int  #: colour batches of vertex splits
+    splits: int  #: vertex splits over all batches
+    random_directions: int  #: splits whose target direction was unsafe (PSQ Alg. 5)
+    rounds: int  #: additive-CCD advancement rounds over all batches
+    stopped_vertices: int  #: moving vertices stopped by contact before their target
+    relaxed_vertices: int  #: stopped vertices relaxed locally (PSQ §4.4.3)
+    relaxation_iterations: int  #: Newton iterations of those relaxations
+    inside_pairs: int  #: contact pairs left within their offset, opened by later solves
+    #: 1 − Σ‖x̂ − x‖ / Σ‖x̂ − x₀‖ over the moving vertices: 1 when all reached their targets
+    reached: float
+    min_gap: float  #: smallest gap d − ξ of contact pairs outside their offsets, m
+
+    @classmethod
+    def _from_native(cls, raw: Any) -> "RefinementStats":
+        return cls(**{name: getattr(raw, name) for name, _ in ffi.typeof("ps_refinement_stats").fields})
+
+
+@dataclass(frozen=True)
 class LevelStats:
     """Statistics of one level, accumulated over every step taken at it (``ps_level_stats``)."""
 
@@ -102,6 +124,11 @@ class LevelStats:
     settles: int  #: solves at a fixed time (:meth:`Simulation.settle`)
     equilibrium: bool  #: the last solve met the tolerance
     refine_seconds: float  #: wall time refining the coarser level into this one, s
+    refinement: RefinementStats  #: how the level's start was built
+    #: contact pairs whose offset is still lowered after the last solve (where contact kept a
+    #: split from opening fully); 0 normally
+    reduced_offsets: int
+    raised_limits: int  #: faces whose strain limit is still raised after the last solve
 
 
 def _effect_bit(name: str) -> int:
@@ -619,6 +646,9 @@ class Simulation(NativeObject):
             settles=int(out.settles),
             equilibrium=bool(out.equilibrium),
             refine_seconds=float(out.refine_seconds),
+            refinement=RefinementStats._from_native(out.refinement),
+            reduced_offsets=int(out.reduced_offsets),
+            raised_limits=int(out.raised_limits),
         )
 
     def __repr__(self) -> str:

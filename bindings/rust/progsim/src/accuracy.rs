@@ -1,6 +1,7 @@
 //! [`Accuracy`]: what accuracy costs in time on one scene, progressive (PSQ) against direct
 //! solves on every level, each compared with the converged finest result.
 
+use std::mem::MaybeUninit;
 use std::path::Path;
 use std::ptr::{self, NonNull};
 
@@ -38,6 +39,11 @@ pub struct AccuracyRow {
     pub error_rms: f64,
     /// Maximum distance to the converged finest result over the bounding-box diagonal.
     pub error_max: f64,
+    /// Face pairs crossing in the level's final state (CGAL's exact check).
+    pub intersecting_pairs: usize,
+    /// Whether the level ended at equilibrium (progressive) or its last solve converged
+    /// (direct).
+    pub converged: bool,
 }
 
 /// The results of one accuracy run. Owns a C `ps_accuracy`, destroyed on drop. `Send` but not
@@ -102,18 +108,11 @@ impl Accuracy {
     }
 
     fn read_row(&self, index: i32) -> Result<AccuracyRow> {
-        let mut raw = sys::ps_accuracy_row {
-            method: sys::PS_METHOD_PROGRESSIVE,
-            level: 0,
-            vertices: 0,
-            newton_iterations: 0,
-            seconds: 0.0,
-            refine_seconds: 0.0,
-            error_rms: 0.0,
-            error_max: 0.0,
-        };
-        // SAFETY: live handle; raw outlives the call.
-        check_thread(unsafe { sys::ps_accuracy_get_row(self.raw.as_ptr(), index, &mut raw) })?;
+        let mut row = MaybeUninit::<sys::ps_accuracy_row>::uninit();
+        // SAFETY: live handle; row outlives the call.
+        check_thread(unsafe { sys::ps_accuracy_get_row(self.raw.as_ptr(), index, row.as_mut_ptr()) })?;
+        // SAFETY: PS_OK, so the library wrote the whole struct.
+        let raw = unsafe { row.assume_init() };
         Ok(AccuracyRow {
             method: if raw.method == sys::PS_METHOD_PROGRESSIVE {
                 Method::Progressive
@@ -127,6 +126,8 @@ impl Accuracy {
             refine_seconds: raw.refine_seconds,
             error_rms: raw.error_rms,
             error_max: raw.error_max,
+            intersecting_pairs: count_from(raw.intersecting_pairs),
+            converged: raw.converged != 0,
         })
     }
 }

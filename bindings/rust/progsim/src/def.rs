@@ -414,6 +414,56 @@ pub struct LevelStats {
     pub equilibrium: bool,
     /// Wall time refining the coarser level into this one, s.
     pub refine_seconds: f64,
+    /// How the level's start was built from the coarser level.
+    pub refinement: RefinementStats,
+    /// Contact pairs whose offset is still lowered after the last solve (where contact kept
+    /// a split from opening fully); 0 normally.
+    pub reduced_offsets: usize,
+    /// Faces whose strain limit is still raised after the last solve; 0 normally.
+    pub raised_limits: usize,
+}
+
+/// How a level's start was built from the coarser level by safe refinement (PSQ §4.4); all
+/// zeros for level 0 and for scenes without contact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RefinementStats {
+    /// Colour batches of vertex splits.
+    pub batches: usize,
+    /// Vertex splits over all batches.
+    pub splits: usize,
+    /// Splits whose target direction was unsafe (PSQ Algorithm 5).
+    pub random_directions: usize,
+    /// Additive-CCD advancement rounds over all batches.
+    pub rounds: usize,
+    /// Moving vertices stopped by contact before their target.
+    pub stopped_vertices: usize,
+    /// Stopped vertices relaxed locally (PSQ §4.4.3).
+    pub relaxed_vertices: usize,
+    /// Newton iterations of those relaxations.
+    pub relaxation_iterations: usize,
+    /// Contact pairs left within their offset, opened by later solves.
+    pub inside_pairs: usize,
+    /// 1 − Σ‖x̂ − x‖ / Σ‖x̂ − x₀‖ over the moving vertices: 1 when all reached their targets.
+    pub reached: f64,
+    /// Smallest gap d − ξ of contact pairs outside their offsets, m.
+    pub min_gap: f64,
+}
+
+impl From<sys::ps_refinement_stats> for RefinementStats {
+    fn from(raw: sys::ps_refinement_stats) -> RefinementStats {
+        RefinementStats {
+            batches: crate::count_from(raw.batches),
+            splits: crate::count_from(raw.splits),
+            random_directions: crate::count_from(raw.random_directions),
+            rounds: crate::count_from(raw.rounds),
+            stopped_vertices: crate::count_from(raw.stopped_vertices),
+            relaxed_vertices: crate::count_from(raw.relaxed_vertices),
+            relaxation_iterations: crate::count_from(raw.relaxation_iterations),
+            inside_pairs: crate::count_from(raw.inside_pairs),
+            reached: raw.reached,
+            min_gap: raw.min_gap,
+        }
+    }
 }
 
 impl From<sys::ps_level_stats> for LevelStats {
@@ -433,6 +483,9 @@ impl From<sys::ps_level_stats> for LevelStats {
             settles: crate::count_from(raw.settles),
             equilibrium: raw.equilibrium != 0,
             refine_seconds: raw.refine_seconds,
+            refinement: RefinementStats::from(raw.refinement),
+            reduced_offsets: crate::count_from(raw.reduced_offsets),
+            raised_limits: crate::count_from(raw.raised_limits),
         }
     }
 }

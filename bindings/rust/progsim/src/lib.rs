@@ -59,7 +59,9 @@ use std::sync::OnceLock;
 use progsim_sys as sys;
 
 pub use accuracy::{Accuracy, AccuracyRow, Method};
-pub use def::{Effect, Effects, HandleMotion, HierarchyDef, LevelStats, Mode, SimulationDef};
+pub use def::{
+    Effect, Effects, HandleMotion, HierarchyDef, LevelStats, Mode, RefinementStats, SimulationDef,
+};
 pub use error::{Error, Result, Status};
 pub use hierarchy::Hierarchy;
 pub use simulation::Simulation;

@@ -25,6 +25,7 @@ fn plate_rows_errors_and_files() {
     assert!(rows[0].error_max > 0.0 && rows[0].error_max < 0.1);
     assert!(rows[0].seconds < rows[2].seconds);
     assert_eq!(rows[5].vertices, 625);
+    assert!(rows.iter().all(|row| row.intersecting_pairs == 0 && row.converged));
     let dir = std::env::temp_dir().join(format!("progsim_rust_accuracy_{}", std::process::id()));
     accuracy.write(&dir).unwrap();
     assert!(dir.join("accuracy.csv").is_file());

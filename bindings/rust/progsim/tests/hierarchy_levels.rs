@@ -96,7 +96,10 @@ fn progressive_preview_refines_to_the_converged_finest() {
     let error = coarse.error_max.expect("measured once the finest level converged");
     assert!(error > 0.0 && error < 0.05, "{error}");
     assert_eq!(sim.level_stats(2).unwrap().error_max, Some(0.0));
-    assert!(sim.level_stats(1).unwrap().refine_seconds > 0.0);
+    let refined = sim.level_stats(1).unwrap();
+    assert!(refined.refine_seconds > 0.0);
+    // No contact: the prolonged state is the start, no safe expansion ran.
+    assert_eq!((refined.refinement.splits, refined.reduced_offsets), (0, 0));
     assert_eq!(sim.refine().unwrap_err().code, Status::OutOfRange);
     assert_eq!(sim.settle(0).unwrap_err().code, Status::InvalidArgument);
 }
