@@ -422,12 +422,13 @@ class Tracker {
 /// only where a border corner is cut off, and the flattening's border uv stays the merged
 /// vertex's true position); on an edge touching a vertex group (a handle), the grouped
 /// endpoint, at its rest position. Both endpoints border, or both in one group: the nearer to
-/// the optimum. Two groups, or the two rules wanting different endpoints: no collapse.
-/// (Progsim choices, not in PSQ.)
+/// the optimum. Two groups, or the two rules wanting different endpoints: no collapse. With
+/// keep_input_positions, always an endpoint (the nearer). (Progsim choices, not in PSQ.)
 template <class Base>
 struct KeptVertexPlacement {
   Base base;
   const Tracker* tracker;
+  bool keep_input_positions;
   template <class Profile>
   boost::optional<typename Profile::Point> operator()(const Profile& profile) const {
     const auto optimal = base(profile);
@@ -442,7 +443,7 @@ struct KeptVertexPlacement {
     const bool keep1 = (border1 && !border0) || (g1 >= 0 && g0 < 0);
     if (keep0 && keep1) return boost::none;
     if (keep0 || keep1) return keep0 ? profile.p0() : profile.p1();
-    if (!border0 && g0 < 0) return optimal;
+    if (!border0 && g0 < 0 && !keep_input_positions) return optimal;
     const Vec3 p = to_vec3(*optimal);
     return (p - to_vec3(profile.p0())).squaredNorm() <= (p - to_vec3(profile.p1())).squaredNorm()
                ? profile.p0()
@@ -501,11 +502,11 @@ std::vector<int> checked_groups(std::vector<int> groups, int n) {
 
 }  // namespace
 
-MeshHierarchy decimate(const TriangleMesh& mesh, std::vector<int> coarse_vertex_counts,
-                       std::vector<int> vertex_groups, HierarchyProgress progress, void* user) {
+MeshHierarchy decimate(const TriangleMesh& mesh, const HierarchyOptions& options,
+                       HierarchyProgress progress, void* user) {
   const std::vector<int> targets =
-      checked_targets(std::move(coarse_vertex_counts), mesh.num_vertices());
-  const std::vector<int> groups = checked_groups(std::move(vertex_groups), mesh.num_vertices());
+      checked_targets(options.coarse_vertex_counts, mesh.num_vertices());
+  const std::vector<int> groups = checked_groups(options.vertex_groups, mesh.num_vertices());
   if (targets.empty()) {
     MeshHierarchy single;
     single.levels.push_back(input_level(mesh));
@@ -520,8 +521,8 @@ MeshHierarchy decimate(const TriangleMesh& mesh, std::vector<int> coarse_vertex_
     return static_cast<int>(profile.surface_mesh().number_of_vertices()) <= coarsest;
   };
   SMS::GarlandHeckbert_probabilistic_plane_policies<SurfaceMesh, Kernel> quadrics(sm);
-  const KeptVertexPlacement<decltype(quadrics.get_placement())> placement{quadrics.get_placement(),
-                                                                          &tracker};
+  const KeptVertexPlacement<decltype(quadrics.get_placement())> placement{
+      quadrics.get_placement(), &tracker, options.keep_input_positions};
   TrackingVisitor visitor;
   visitor.tracker = &tracker;
   const FlatteningFilter filter{&tracker};

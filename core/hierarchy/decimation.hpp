@@ -9,13 +9,13 @@
 
 namespace progsim {
 
-/// Decimates `mesh` (validated by the caller) through the given vertex counts (distinct, each
-/// at least 4 and below |V|, any order), keeping the vertex groups (HierarchyOptions::
-/// vertex_groups; empty: none). Fills every field of the result except expansion_batches.
+/// Decimates `mesh` (validated by the caller) through options.coarse_vertex_counts (distinct,
+/// each at least 4 and below |V|, any order), keeping the vertex groups (empty: none) and, if
+/// asked, the input positions. Fills every field of the result except expansion_batches.
 /// Throws Error(invalid_argument) for counts out of range or malformed groups,
 /// Error(invalid_mesh) when no further collapse keeps the surface valid before a count is
 /// reached, Error(cancelled) when `progress` returns false.
-MeshHierarchy decimate(const TriangleMesh& mesh, std::vector<int> coarse_vertex_counts,
-                       std::vector<int> vertex_groups, HierarchyProgress progress, void* user);
+MeshHierarchy decimate(const TriangleMesh& mesh, const HierarchyOptions& options,
+                       HierarchyProgress progress, void* user);
 
 }  // namespace progsim

@@ -48,7 +48,7 @@ MeshHierarchy build_hierarchy(const TriangleMesh& mesh, const HierarchyOptions& 
                               HierarchyProgress progress, void* user) {
   validate_mesh(mesh, "hierarchy mesh");
   MeshHierarchy hierarchy =
-      decimate(mesh, options.coarse_vertex_counts, options.vertex_groups, progress, user);
+      decimate(mesh, options, progress, user);
   for (int l = 0; l < hierarchy.finest(); ++l)
     hierarchy.expansion_batches.push_back(
         expansion_batches(level_input_faces(hierarchy.levels[l]), hierarchy.collapses,

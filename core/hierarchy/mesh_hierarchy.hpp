@@ -75,6 +75,11 @@ struct HierarchyOptions {
   /// Vertices of a group keep their rest positions on every level where they survive, every
   /// group keeps at least one vertex, and no collapse joins two groups.
   std::vector<int> vertex_groups;
+  /// Every coarse vertex keeps the rest position of the input vertex it is (each collapse keeps
+  /// the endpoint nearer the quadric optimum), so the coarse levels of a convex surface lie
+  /// inside it. For progressive obstacles, whose coarse copies must not bulge into a shell
+  /// resting on them.
+  bool keep_input_positions = false;
 };
 
 /// Level sizes shrinking by a constant factor: round(n / ratio^k) for k = count … 1, coarsest

@@ -46,6 +46,13 @@ ProgressiveSimulation::ProgressiveSimulation(Scene scene,
   if (!hierarchy_)
     hierarchy_ =
         std::make_shared<const MeshHierarchy>(build_scene_hierarchy(scene_, progress, user));
+  if (hierarchy_->num_levels() > 1) {
+    std::vector<int> shell_vertices;
+    for (const HierarchyLevel& l : hierarchy_->levels)
+      shell_vertices.push_back(l.rest.num_vertices());
+    auto obstacles = std::make_unique<const ObstacleHierarchy>(scene_, shell_vertices);
+    if (!obstacles->empty()) obstacle_levels_ = std::move(obstacles);
+  }
   to_finest_.resize(hierarchy_->num_levels());
   to_next_.resize(hierarchy_->num_levels());
   records_.resize(hierarchy_->num_levels());
@@ -95,6 +102,7 @@ Scene ProgressiveSimulation::level_scene(int level) const {
   const ProgressiveSettings& p = scene.progressive;
   scene.solver.max_iterations = std::min(scene.solver.max_iterations, p.preview_iterations);
   if (p.preview_tolerance > 0.0) scene.solver.tolerance = p.preview_tolerance;
+  if (obstacle_levels_) obstacle_levels_->use_level(level, scene);
   return scene;
 }
 
@@ -115,8 +123,10 @@ void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
   r.gradient_norm = step.newton.gradient_norm;
   r.simulated_time = step.time;
   // The Newton test passed within the step: the state is an equilibrium of the level's energy
-  // at these loads (PSQ Algorithm 1 flags it when the first test passes).
-  r.equilibrium = step.newton.stop == NewtonStop::converged;
+  // at these loads (PSQ Algorithm 1 flags it when the first test passes), once every scripted
+  // motion has arrived.
+  r.equilibrium = step.newton.stop == NewtonStop::converged && step.script_reached >= 1.0;
+  r.obstacle_vertices = static_cast<int>(sim_->obstacle_positions().rows());
   r.reduced_offsets = step.reduced_offsets;
   r.raised_limits = step.raised_limits;
 }
@@ -166,17 +176,20 @@ void ProgressiveSimulation::refine() {
     fail(Status::numerical_failure, where + "the prolonged state is not finite");
   // Without contact the level starts at the target; with contact, PSQ §4.4's safe expansion
   // gets as close to it as it can without crossing or entering a contact offset.
-  SafeRefinementStats refinement;
+  SafeRefinementStats refinement, obstacle_refinement;
   Vector start = as_dofs(target);
   std::unique_ptr<DirectSimulation> next;
   try {
-    if (sim_->contact())
-      start = as_dofs(safe_refinement(*hierarchy_, level_, coarse, target, surroundings(level_ + 1),
-                                      {}, &refinement));
     const ContactPotential* contact = sim_->contact();
-    next =
-        make_level(level_ + 1, {std::move(start), sim_->steps_taken(), true,
-                                sim_->obstacle_positions(), contact ? contact->stiffness() : 0.0});
+    Positions obstacles = sim_->obstacle_positions();
+    if (contact) {
+      const RefinementSurroundings around = surroundings(level_ + 1);
+      start =
+          as_dofs(safe_refinement(*hierarchy_, level_, coarse, target, around, {}, &refinement));
+      obstacles = refined_obstacles(start, around, &obstacle_refinement);
+    }
+    next = make_level(level_ + 1, {std::move(start), sim_->steps_taken(), true,
+                                   std::move(obstacles), contact ? contact->stiffness() : 0.0});
   } catch (const Error& e) {
     if (e.status() != Status::intersecting) throw;
     fail(Status::intersecting, where + e.what());
@@ -188,6 +201,22 @@ void ProgressiveSimulation::refine() {
   ++level_;
   records_[level_].refine_seconds += timer.seconds();
   records_[level_].refinement = refinement;
+  records_[level_].obstacle_refinement = obstacle_refinement;
+  records_[level_].obstacle_vertices = static_cast<int>(sim_->obstacle_positions().rows());
+}
+
+Positions ProgressiveSimulation::refined_obstacles(const Vector& start,
+                                                   const RefinementSurroundings& around,
+                                                   SafeRefinementStats* stats) const {
+  if (!obstacle_levels_) return sim_->obstacle_positions();
+  const Positions shell = as_positions(start);
+  const Faces& faces = hierarchy_->levels[level_ + 1].rest.faces;
+  const double offset =
+      around.vertex_offset.empty()
+          ? 0.0
+          : *std::max_element(around.vertex_offset.begin(), around.vertex_offset.end());
+  return obstacle_levels_->refine(level_, sim_->obstacle_positions(), {&shell, &faces, offset},
+                                  around.dhat, stats);
 }
 
 Positions ProgressiveSimulation::positions(int level) const {

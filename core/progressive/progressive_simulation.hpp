@@ -8,6 +8,7 @@
 
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "hierarchy/shell_prolongation.hpp"
+#include "progressive/progressive_obstacles.hpp"
 #include "progressive/safe_refinement.hpp"
 #include "progressive/state_distance.hpp"
 #include "scene/scene.hpp"
@@ -33,8 +34,13 @@ struct LevelRecord {
   int reduced_offsets = 0;
   /// Faces whose strain limit is still raised after the last solve (StepRecord::raised_limits).
   int raised_limits = 0;
-  bool equilibrium = false;  ///< the last solve needed no Newton step (PSQ Algorithm 1 line 21)
-  Positions positions;       ///< the state when the level was left (empty while current)
+  /// How the progressive obstacles were refined into this level (PSQ §4.6; zeros without).
+  SafeRefinementStats obstacle_refinement;
+  int obstacle_vertices = 0;  ///< obstacle vertices the level's contact meets
+  /// The last solve needed no Newton step (PSQ Algorithm 1 line 21) and every script reached
+  /// its place (after refinement, progressive obstacles may take several solves).
+  bool equilibrium = false;
+  Positions positions;  ///< the state when the level was left (empty while current)
 };
 
 /// The progressive driver. Level 0 is the coarsest; finest() is the scene's mesh. Quasistatic
@@ -63,6 +69,8 @@ class ProgressiveSimulation {
   bool settle_to_equilibrium(int max_solves);
   /// Refines the current level l into l+1 toward the hierarchy's P^l_{l+1}(x_l) (PSQ eq. 7) and
   /// continues there at the same scene time. Without contact the level starts at P^l_{l+1}(x_l).
+  /// Progressive obstacles (PSQ §4.6) are then refined the same way against the refined shell,
+  /// and the level's script rounds carry them on to their scripted places.
   /// With contact it starts where safe_refinement() (PSQ §4.4) takes it: split by split toward
   /// P^l_{l+1}(x_l), never crossing or entering a contact offset, even when the prolonged state
   /// itself intersects. Faces the refined start leaves beyond their strain limit get raised
@@ -112,8 +120,14 @@ class ProgressiveSimulation {
   /// Adds a solve's outcome to the current level's record.
   void record(const StepRecord& step, bool new_step);
 
+  /// Refines the current level's obstacles to level_ + 1 against the refined shell `start`
+  /// (progressive collision objects, PSQ §4.6); the obstacles as they are without any.
+  Positions refined_obstacles(const Vector& start, const RefinementSurroundings& around,
+                              SafeRefinementStats* stats) const;
+
   Scene scene_;
   std::shared_ptr<const MeshHierarchy> hierarchy_;
+  std::unique_ptr<const ObstacleHierarchy> obstacle_levels_;  // null: no progressive obstacle
   mutable std::vector<std::shared_ptr<const ShellProlongation>> to_finest_;  // lazily built
   mutable std::vector<std::shared_ptr<const ShellProlongation>> to_next_;    // lazily built
   std::unique_ptr<DirectSimulation> sim_;

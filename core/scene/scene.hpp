@@ -47,6 +47,9 @@ struct Obstacle {
   TriangleMesh mesh;      ///< world space at t = 0
   HandleMotion motion;    ///< scripted rigid motion (static by default)
   double friction = 0.0;  ///< Coulomb coefficient μ of its surface
+  /// Progressive collision object (PSQ §4.6): coarse levels of a progressive simulation meet a
+  /// decimated copy, refined with the shell (ObstacleHierarchy). Direct solves ignore it.
+  bool progressive = false;
 };
 
 /// The analytic ground: the half-space n·x ≥ height, a collision object without a mesh.

@@ -245,7 +245,7 @@ Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string&
 }
 
 Obstacle obstacle(const Json& j, const std::string& where, const std::string& base_dir) {
-  expect_keys(j, where, {"name", "mesh", "transform", "motion", "friction"});
+  expect_keys(j, where, {"name", "mesh", "transform", "motion", "friction", "progressive"});
   Obstacle o;
   o.name = j.value("name", where);
   o.mesh = body_mesh(require(j, "mesh", where), where + ".mesh", base_dir);
@@ -253,6 +253,11 @@ Obstacle obstacle(const Json& j, const std::string& where, const std::string& ba
     apply_transform(j.at("transform"), where + ".transform", o.mesh.vertices);
   if (j.contains("motion")) o.motion = motion(j.at("motion"), where + ".motion");
   o.friction = parameter(j, "material", "friction", where);
+  if (j.contains("progressive")) {
+    if (!j.at("progressive").is_boolean())
+      scene_error(where + ".progressive", "must be true or false");
+    o.progressive = j.at("progressive").get<bool>();
+  }
   return o;
 }
 

@@ -93,8 +93,10 @@ TEST(PsqScenes, ClothOnSphereKeepsItsStrainLimitOnEveryLevel) {
       bundled("psq_cloth_on_sphere.json", {{R"("nx": 40, "ny": 40)", R"("nx": 20, "ny": 20)"}});
   ASSERT_EQ(scene.bodies[0].material.strain_limit, 1.06);
   ASSERT_TRUE(scene.effects.has(Effect::strain_limit));
+  ASSERT_TRUE(scene.obstacles[0].progressive);
   ProgressiveSimulation psq(scene);
   for (int s = 0; s < scene.num_steps(); ++s) psq.step();
+  const int sphere_vertices = scene.obstacles[0].mesh.num_vertices();
   for (int level = 0;; ++level) {
     SCOPED_TRACE("level " + std::to_string(level));
     StepRecord last = psq.settle();
@@ -107,7 +109,16 @@ TEST(PsqScenes, ClothOnSphereKeepsItsStrainLimitOnEveryLevel) {
     ASSERT_TRUE(last.max_stretch.has_value());
     EXPECT_LT(*last.max_stretch, 1.06);
     EXPECT_EQ(psq.current().intersecting_face_pairs(), 0u);  // CGAL
-    if (level == psq.finest()) break;
+    // The progressive sphere (PSQ §4.6): coarse on coarse levels, refined with the cloth
+    // (its new vertices placed safely, then carried to their places by the script rounds).
+    const LevelRecord& record = psq.records()[level];
+    EXPECT_TRUE(record.equilibrium);
+    if (level < psq.finest()) EXPECT_LT(record.obstacle_vertices, sphere_vertices);
+    if (level > 0) EXPECT_GT(record.obstacle_refinement.splits, 0);
+    if (level == psq.finest()) {
+      EXPECT_EQ(psq.current().obstacle_positions(), scene.obstacles[0].mesh.vertices);
+      break;
+    }
     psq.refine();
   }
 }
