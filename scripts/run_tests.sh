@@ -8,10 +8,6 @@ cd "$(dirname "$0")/.."
 scripts/install_deps.sh
 scripts/fetch_test_meshes.sh
 export OMP_WAIT_POLICY=passive  # tests share the cores; idle OpenMP threads must sleep
-# OpenBLAS's own threads (CHOLMOD's dense supernode kernels) were seen spinning in sched_yield
-# for minutes on a 2-core runner (a 0.3 s test took > 5 min, 90 % system time, twice, then not
-# again); progsim parallelises with OpenMP over elements, so tests keep BLAS single-threaded.
-export OPENBLAS_NUM_THREADS=1
 
 echo "== release build: C++ and C tests =="
 scripts/build.sh release

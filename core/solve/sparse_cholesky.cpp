@@ -31,11 +31,18 @@ namespace {
 /// alternating with our own regions makes libgomp create and destroy threads on every
 /// factorization (measured: 960 thread creations and 3.8 s of 5 s in a 642-vertex balloon
 /// run). With dynamic adjustment the runtime sizes CHOLMOD's teams to the cores available.
+/// The dense kernels CHOLMOD calls (dpotrf, dsyrk) must then run single-threaded: OpenBLAS's
+/// OpenMP build sizes its team from omp_get_max_threads() and its first thread waits for every
+/// member, so when dynamic adjustment starts fewer under load it spins in sched_yield forever
+/// (seen: tests hung for over 10 min under dpotrf when two ran at once on 2 cores).
 template <typename Factorization>
 void factorize_with_dynamic_threads(Factorization& llt, const SparseCholesky::SparseMatrix& h) {
   const int was_dynamic = omp_get_dynamic();
+  const int threads = omp_get_max_threads();
   omp_set_dynamic(1);
+  omp_set_num_threads(1);  // BLAS calls from this thread: no team
   llt.factorize(h);
+  omp_set_num_threads(threads);
   omp_set_dynamic(was_dynamic);
 }
 
