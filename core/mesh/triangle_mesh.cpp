@@ -20,4 +20,21 @@ Eigen::VectorXd face_areas(const Positions& vertices, const Faces& faces) {
   return areas;
 }
 
+TriangleMesh merge_meshes(const std::vector<const TriangleMesh*>& parts) {
+  Eigen::Index nv = 0, nf = 0;
+  for (const TriangleMesh* part : parts) {
+    nv += part->vertices.rows();
+    nf += part->faces.rows();
+  }
+  TriangleMesh merged{Positions(nv, 3), Faces(nf, 3)};
+  Eigen::Index v = 0, f = 0;
+  for (const TriangleMesh* part : parts) {
+    merged.vertices.middleRows(v, part->vertices.rows()) = part->vertices;
+    merged.faces.middleRows(f, part->faces.rows()) = part->faces.array() + static_cast<int>(v);
+    v += part->vertices.rows();
+    f += part->faces.rows();
+  }
+  return merged;
+}
+
 }  // namespace progsim

@@ -1,5 +1,7 @@
 #pragma once
 /// @file A triangle surface mesh: positions and faces, nothing else.
+#include <vector>
+
 #include "common/types.hpp"
 
 namespace progsim {
@@ -19,5 +21,8 @@ double bounding_box_diagonal(const Positions& vertices);
 
 /// Area of each face (|F|), m².
 Eigen::VectorXd face_areas(const Positions& vertices, const Faces& faces);
+
+/// The meshes `parts` as one: their vertices and faces in order, face indices shifted.
+TriangleMesh merge_meshes(const std::vector<const TriangleMesh*>& parts);
 
 }  // namespace progsim

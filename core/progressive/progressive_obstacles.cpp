@@ -9,25 +9,6 @@
 namespace progsim {
 namespace {
 
-/// The meshes of the obstacles `which` of `scene`, merged in that order.
-TriangleMesh merged_meshes(const Scene& scene, const std::vector<int>& which) {
-  Eigen::Index nv = 0, nf = 0;
-  for (int k : which) {
-    nv += scene.obstacles[k].mesh.num_vertices();
-    nf += scene.obstacles[k].mesh.num_faces();
-  }
-  TriangleMesh merged{Positions(nv, 3), Faces(nf, 3)};
-  Eigen::Index v = 0, f = 0;
-  for (int k : which) {
-    const TriangleMesh& mesh = scene.obstacles[k].mesh;
-    merged.vertices.middleRows(v, mesh.num_vertices()) = mesh.vertices;
-    merged.faces.middleRows(f, mesh.num_faces()) = mesh.faces.array() + static_cast<int>(v);
-    v += mesh.num_vertices();
-    f += mesh.num_faces();
-  }
-  return merged;
-}
-
 /// Coarse level sizes round(n · √(shell[l] / shell.back())): the shell's coarsening, halved
 /// in log scale. An obstacle coarsened as far as the shell would make each refinement push the
 /// shell out by the sagitta of its coarse faces (about 1 cm on the drape's 0.25 m sphere at 40
@@ -56,7 +37,9 @@ ObstacleHierarchy::ObstacleHierarchy(const Scene& scene, const std::vector<int>&
     if (scene.obstacles[k].progressive) progressive_.push_back(static_cast<int>(k));
   }
   if (progressive_.empty()) return;
-  const TriangleMesh merged = merged_meshes(scene, progressive_);
+  std::vector<const TriangleMesh*> meshes;
+  for (int k : progressive_) meshes.push_back(&scene.obstacles[k].mesh);
+  const TriangleMesh merged = merge_meshes(meshes);
   HierarchyOptions options;
   options.coarse_vertex_counts = coarse_counts(merged.num_vertices(), shell_vertices);
   options.keep_input_positions = true;  // a coarse copy of a convex obstacle lies inside it

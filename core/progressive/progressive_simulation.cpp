@@ -126,7 +126,7 @@ void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
   // at these loads (PSQ Algorithm 1 flags it when the first test passes), once every scripted
   // motion has arrived.
   r.equilibrium = step.newton.stop == NewtonStop::converged && step.script_reached >= 1.0;
-  r.obstacle_vertices = static_cast<int>(sim_->obstacle_positions().rows());
+  r.obstacle_vertices = obstacle_vertex_count();
   r.reduced_offsets = step.reduced_offsets;
   r.raised_limits = step.raised_limits;
 }
@@ -202,7 +202,11 @@ void ProgressiveSimulation::refine() {
   records_[level_].refine_seconds += timer.seconds();
   records_[level_].refinement = refinement;
   records_[level_].obstacle_refinement = obstacle_refinement;
-  records_[level_].obstacle_vertices = static_cast<int>(sim_->obstacle_positions().rows());
+  records_[level_].obstacle_vertices = obstacle_vertex_count();
+}
+
+int ProgressiveSimulation::obstacle_vertex_count() const {
+  return sim_->contact() ? sim_->contact()->mesh().num_obstacle_vertices : 0;
 }
 
 Positions ProgressiveSimulation::refined_obstacles(const Vector& start,

@@ -117,6 +117,8 @@ class ProgressiveSimulation {
   /// What the shell of `level` must stay clear of during refinement: its contact offsets, the
   /// obstacles where they are now, the ground.
   RefinementSurroundings surroundings(int level) const;
+  /// Obstacle vertices the current level's contact meets (without copying their positions).
+  int obstacle_vertex_count() const;
   /// Adds a solve's outcome to the current level's record.
   void record(const StepRecord& step, bool new_step);
 
