@@ -23,6 +23,10 @@ Scene validated(Scene scene) {
 
 /// Rounds of CCD-safe scripted motion (each followed by a solve) before a step gives up.
 constexpr int kMaxScriptRounds = 50;
+/// A scripted step this short ends the rounds: the motion is pressing into a contact that the
+/// rounds' solves, stopped by the step-size tolerance, do not push back (the step shrinks
+/// geometrically, a Zeno sequence). The step's own solve resolves it; the next solve goes on.
+constexpr double kStalledScriptStep = 1e-3;
 
 /// Sums the iterations and timings of a solve into a step's report; the rest is the last solve's.
 void accumulate(NewtonReport& total, const NewtonReport& part) {
@@ -225,6 +229,7 @@ double DirectSimulation::advance_scripts(double t, double decrement_scale, Newto
       contact_->set_obstacle_positions(obstacle_target);
       return 1.0;
     }
+    if (alpha < kStalledScriptStep) break;
     x_ += alpha * script_step_;
     contact_->set_obstacle_positions(obstacles_now + alpha * (obstacle_target - obstacles_now));
     reached += alpha * (1.0 - reached);
