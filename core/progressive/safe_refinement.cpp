@@ -516,12 +516,25 @@ void check_arguments(const MeshHierarchy& h, int level, const Positions& coarse,
              std::to_string(around.vertex_offset.size()));
 }
 
+/// PSQ §4.4 keeps an intersection-free state so: its start must be one. Checked with CGAL's
+/// exact predicates (the shell at `coarse` with the obstacles), independent of the CCD.
+void check_start_crossing_free(const MeshHierarchy& h, int level, const Positions& coarse,
+                               const RefinementSurroundings& around) {
+  const TriangleMesh shell{coarse, h.levels[level].rest.faces};
+  const TriangleMesh obstacles{around.obstacle_positions, around.obstacle_faces};
+  const TriangleMesh start = merge_meshes({&shell, &obstacles});
+  check_intersection_free(start.vertices, start.faces,
+                          "safe refinement: the level-" + std::to_string(level) +
+                              " state (shell faces first, then the obstacles')");
+}
+
 }  // namespace
 
 Positions safe_refinement(const MeshHierarchy& hierarchy, int level, const Positions& coarse,
                           const Positions& target, const RefinementSurroundings& surroundings,
                           const SafeRefinementSettings& settings, SafeRefinementStats* stats) {
   check_arguments(hierarchy, level, coarse, target, surroundings);
+  check_start_crossing_free(hierarchy, level, coarse, surroundings);
   SafeRefinementStats local;
   Expansion expansion(hierarchy, level, coarse, target, surroundings, settings);
   for (const std::vector<int>& batch : hierarchy.expansion_batches[level])

@@ -173,6 +173,28 @@ TEST(SafeRefinement, StopsShortOfTheObstacleAndDoesNotDependOnThreads) {
   EXPECT_TRUE(one.allFinite());
 }
 
+TEST(SafeRefinement, RefusesToStartFromACrossingState) {
+  RefinementCase c = previewed(dome_under_lid());
+  // The lid moved to pierce the coarse shell's first face (CGAL confirms the crossing).
+  const Faces& faces = c.psq->hierarchy().levels[0].rest.faces;
+  const Vec3 a = c.coarse.row(faces(0, 0)), b = c.coarse.row(faces(0, 1)),
+             d = c.coarse.row(faces(0, 2));
+  const Vec3 normal = (b - a).cross(d - a).normalized(), centre = (a + b + d) / 3.0;
+  const double size = 0.1 * (b - a).norm();
+  c.around.obstacle_positions.row(0) = centre + size * normal;
+  c.around.obstacle_positions.row(1) = centre - size * normal;
+  c.around.obstacle_positions.row(2) = centre + size * (b - a).normalized();
+  const TriangleMesh piercing{c.around.obstacle_positions, c.around.obstacle_faces};
+  ASSERT_GT(crossing_pairs(c.coarse, faces, piercing), 0u);
+  try {
+    safe_refinement(c.psq->hierarchy(), 0, c.coarse, c.target, c.around);
+    ADD_FAILURE() << "a crossing start was refined";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::intersecting);
+    EXPECT_NE(std::string(e.what()).find("level-0 state"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SafeRefinement, RefusesBadArguments) {
   RefinementCase c = previewed(dome_under_lid());
   const MeshHierarchy& h = c.psq->hierarchy();
