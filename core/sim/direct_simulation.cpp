@@ -23,9 +23,9 @@ Scene validated(Scene scene) {
 
 /// Rounds of CCD-safe scripted motion (each followed by a solve) before a step gives up.
 constexpr int kMaxScriptRounds = 50;
-/// A scripted step this short ends the rounds: the motion is pressing into a contact that the
-/// rounds' solves, stopped by the step-size tolerance, do not push back (the step shrinks
-/// geometrically, a Zeno sequence). The step's own solve resolves it; the next solve goes on.
+
+/// A scripted step shorter than this fraction ends the rounds: the contact bounding it is
+/// better resolved by the step's own solve than by many solves that each gain little.
 constexpr double kStalledScriptStep = 1e-3;
 
 /// Sums the iterations and timings of a solve into a step's report; the rest is the last solve's.
@@ -211,6 +211,7 @@ void DirectSimulation::apply_pressure(double t) {
 double DirectSimulation::advance_scripts(double t, double decrement_scale, NewtonReport& report) {
   if (!contact_) {
     handles_.apply(t, x_);
+    fit_limits_to_prescribed_motion();
     return 1.0;
   }
   script_target_ = x_;
@@ -227,15 +228,31 @@ double DirectSimulation::advance_scripts(double t, double decrement_scale, Newto
     if (alpha >= 1.0) {
       x_ += script_step_;
       contact_->set_obstacle_positions(obstacle_target);
+      fit_limits_to_prescribed_motion();
       return 1.0;
     }
     if (alpha < kStalledScriptStep) break;
     x_ += alpha * script_step_;
     contact_->set_obstacle_positions(obstacles_now + alpha * (obstacle_target - obstacles_now));
     reached += alpha * (1.0 - reached);
-    accumulate(report, solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
+    fit_limits_to_prescribed_motion();
+    const NewtonReport round_solve =
+        solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_);
+    accumulate(report, round_solve);
+    // A solve that did not move (its first step was below the tolerance) left the contact
+    // that bounded this round as close as it was: the next rounds would each close its gap
+    // tenfold (a Zeno sequence) without pushing back. The step's own solve and the next
+    // solve's rounds go on from here.
+    if (round_solve.iterations == 0) break;
   }
   return reached;
+}
+
+void DirectSimulation::fit_limits_to_prescribed_motion() {
+  // Handles moved faces next to them beyond their strain limit, where the barrier is infinite
+  // (a twist's first free row lags the turned edge): their limits are raised and the following
+  // solves bring them back down (StrainLimit::fit_limits, as for a refined start).
+  if (strain_limit_ && strain_limit_->fit_limits(x_) > 0) fit_to_start_ = true;
 }
 
 void DirectSimulation::update_scene(Scene scene) {

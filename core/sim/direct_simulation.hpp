@@ -114,6 +114,8 @@ class DirectSimulation {
   /// Moves handles and obstacles toward their scripts at time t, in CCD-safe rounds with a
   /// Newton solve between rounds when contact stops them; returns the fraction reached.
   double advance_scripts(double t, double decrement_scale, NewtonReport& report);
+  /// Raises the strain limits of faces a prescribed motion stretched beyond them.
+  void fit_limits_to_prescribed_motion();
 
   Scene scene_;
   SimulationLevel level_;
