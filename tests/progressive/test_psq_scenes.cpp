@@ -35,7 +35,7 @@ Scene bundled(const std::string& file, const Edits& edits) {
   return parse_scene(json, dir);
 }
 
-/// Every row crossing-free; the progressive finest level at equilibrium.
+/// Every row crossing-free; the finest level at equilibrium, progressive and direct.
 void expect_safe_and_converged(const AccuracyReport& report) {
   for (const AccuracyRow& row : report.rows) {
     SCOPED_TRACE(
@@ -47,6 +47,9 @@ void expect_safe_and_converged(const AccuracyReport& report) {
   const AccuracyRow& finest = report.rows[report.rows.size() / 2 - 1];
   ASSERT_EQ(finest.method, AccuracyRow::Method::progressive);
   EXPECT_TRUE(finest.converged);
+  // The baseline is worth comparing with: the direct finest solve converged too.
+  ASSERT_EQ(report.rows.back().method, AccuracyRow::Method::direct);
+  EXPECT_TRUE(report.rows.back().converged);
 }
 
 }  // namespace
