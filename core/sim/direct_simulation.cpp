@@ -330,8 +330,11 @@ StepRecord DirectSimulation::solve_at(double t, bool new_step) {
 }
 
 void DirectSimulation::restore_fitted(StepRecord& record) {
-  // Raise the lowered offsets and lower the raised limits as far as the solve allows.
-  if (contact_) record.reduced_offsets = contact_->fit_offsets(x_);
+  // Raise the lowered offsets and lower the raised limits as far as the solve allows. A solve
+  // leaves no other pair inside its offset, so without lowered offsets there is nothing to
+  // refit (and no broad phase to pay for: prescribed motion raises limits every step).
+  if (contact_ && contact_->reduced_offsets() > 0)
+    record.reduced_offsets = contact_->fit_offsets(x_);
   if (strain_limit_) record.raised_limits = strain_limit_->fit_limits(x_);
   fit_to_start_ = record.reduced_offsets > 0 || record.raised_limits > 0;
 }

@@ -135,8 +135,8 @@ class DirectSimulation {
   Vector x_, v_, x_previous_, script_target_, script_step_;
   int steps_taken_ = 0;
   double length_ = 1.0;
-  bool fit_to_start_ = false;     // offsets and strain limits still fitted to the start
-  Positions start_obstacles_;     // LevelStart::obstacles, for the first contact term
+  bool fit_to_start_ = false;  // offsets or strain limits fitted to a start or to prescribed motion
+  Positions start_obstacles_;  // LevelStart::obstacles, for the first contact term
   double start_stiffness_ = 0.0;  // LevelStart::contact_stiffness
   bool friction_lagged_ = false;  // friction_ has contacts frozen (else the next solve lags)
 };

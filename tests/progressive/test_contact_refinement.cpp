@@ -25,11 +25,9 @@ namespace {
 /// mesh; the pairs that cross (CGAL exact predicates).
 std::size_t crossing_pairs(const Positions& shell, const Faces& shell_faces,
                            const TriangleMesh& obstacle) {
-  Positions all(shell.rows() + obstacle.num_vertices(), 3);
-  all << shell, obstacle.vertices;
-  Faces faces(shell_faces.rows() + obstacle.num_faces(), 3);
-  faces << shell_faces, obstacle.faces.array() + static_cast<int>(shell.rows());
-  return intersecting_faces(all, faces, 1).size();
+  const TriangleMesh shell_mesh{shell, shell_faces};
+  const TriangleMesh all = merge_meshes({&shell_mesh, &obstacle});
+  return intersecting_faces(all.vertices, all.faces, 1).size();
 }
 
 /// A triangle of circumradius r centred at c in the plane with normal n.

@@ -28,11 +28,9 @@ const std::vector<int> kShellLevels = {100, 400, 1600};
 /// The shell and obstacle faces of one mesh, to test crossings between them with CGAL.
 std::size_t crossings(const Positions& shell, const Faces& shell_faces, const Positions& obstacle,
                       const Faces& obstacle_faces) {
-  Positions points(shell.rows() + obstacle.rows(), 3);
-  points << shell, obstacle;
-  Faces faces(shell_faces.rows() + obstacle_faces.rows(), 3);
-  faces << shell_faces, obstacle_faces.array() + static_cast<int>(shell.rows());
-  return intersecting_faces(points, faces).size();
+  const TriangleMesh shell_mesh{shell, shell_faces}, obstacle_mesh{obstacle, obstacle_faces};
+  const TriangleMesh all = merge_meshes({&shell_mesh, &obstacle_mesh});
+  return intersecting_faces(all.vertices, all.faces).size();
 }
 
 }  // namespace
