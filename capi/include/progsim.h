@@ -460,9 +460,11 @@ typedef struct ps_level_stats {
    *  level is at equilibrium (ps_sim_settle() there). */
   double error_rms;
   double error_max;
-  int32_t settles;                /**< solves at a fixed time (ps_sim_settle()) */
-  int32_t equilibrium;            /**< 1 if the last solve met the tolerance */
-  double refine_seconds;          /**< wall time refining the coarser level into this one, s */
+  int32_t settles;       /**< solves at a fixed time (ps_sim_settle()) */
+  int32_t equilibrium;   /**< 1 if the last solve left an equilibrium (quasistatic: tolerance met
+                          *  with the scripts arrived, before any Newton step with the proximal
+                          *  term); 0 for dynamic scenes */
+  double refine_seconds; /**< wall time refining the coarser level into this one, s */
   ps_refinement_stats refinement; /**< how the level's start was built */
   /** Contact pairs whose offset is still lowered after the last solve (where contact kept a
    *  split from opening fully; the state is intersection-free but thinner there); 0 normally. */
@@ -501,7 +503,8 @@ typedef struct ps_accuracy_row {
   double error_rms;
   double error_max;
   int32_t intersecting_pairs; /**< face pairs crossing in the final state (CGAL exact check) */
-  /** 1 if the level ended at equilibrium (progressive) or its last solve converged (direct). */
+  /** 1 if the level ended at equilibrium (as ps_level_stats::equilibrium), progressive or direct.
+   */
   int32_t converged;
 } ps_accuracy_row;
 

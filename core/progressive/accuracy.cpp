@@ -30,9 +30,10 @@ void set_errors(AccuracyRow& row, const Positions& x, const Positions& reference
   row.error_max = d.max;
 }
 
-/// The scene solved directly on `level` over its load script, prolonged to the finest mesh.
+/// The scene solved directly on `level` over its load script and settled to equilibrium (at
+/// most `max_settles` more solves, as the progressive levels), prolonged to the finest mesh.
 AccuracyRow direct_row(const Scene& scene, const ProgressiveSimulation& psq, int level,
-                       Positions& prolonged) {
+                       int max_settles, Positions& prolonged) {
   AccuracyRow row;
   row.method = Method::direct;
   row.level = level;
@@ -43,8 +44,12 @@ AccuracyRow direct_row(const Scene& scene, const ProgressiveSimulation& psq, int
     last = sim.step();
     row.newton_iterations += last.newton.iterations;
   }
+  for (int k = 0; k < max_settles && !last.equilibrium; ++k) {
+    last = sim.settle();
+    row.newton_iterations += last.newton.iterations;
+  }
   row.seconds = timer.seconds();
-  row.converged = last.newton.stop == NewtonStop::converged;
+  row.converged = last.equilibrium;
   row.intersecting_pairs = static_cast<int>(sim.intersecting_face_pairs());
   row.vertices = sim.model().rest.num_vertices();
   prolonged = level < psq.finest() ? psq.prolong_to_finest(level, Positions(sim.positions()))
@@ -150,7 +155,7 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
   for (int level = 0; level <= finest; ++level) {
     notify(progress, user, (finest + 1 + level) / units, "direct level " + std::to_string(level));
     prolonged.emplace_back();
-    report.rows.push_back(direct_row(scene, psq, level, prolonged.back()));
+    report.rows.push_back(direct_row(scene, psq, level, max_settles, prolonged.back()));
   }
   const Positions reference = prolonged[finest];
   report.diagonal = bounding_box_diagonal(hierarchy->levels.back().rest.vertices);

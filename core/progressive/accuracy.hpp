@@ -16,7 +16,7 @@ struct AccuracyRow {
   int vertices = 0;  ///< of the level's mesh
   /// Progressive: wall time from the start (after the hierarchy is built) until this level's
   /// equilibrium, the coarser levels and refinements included. Direct: the solve of this level
-  /// alone over the whole load script.
+  /// alone over the whole load script, to equilibrium.
   double seconds = 0.0;
   double refine_seconds = 0.0;  ///< progressive: time spent building this level's start
   int newton_iterations = 0;    ///< on this level (progressive) or in the solve (direct)
@@ -26,7 +26,7 @@ struct AccuracyRow {
   double error_rms = 0.0, error_max = 0.0;
   /// Face pairs of the shell and obstacles crossing in the level's final state (CGAL exact).
   int intersecting_pairs = 0;
-  /// Progressive: the level ended at equilibrium; direct: its last solve converged.
+  /// The level ended at equilibrium (StepRecord::equilibrium), progressive or direct.
   bool converged = false;
 };
 
@@ -44,9 +44,9 @@ using AccuracyProgress = bool (*)(void* user, double fraction, const char* phase
 
 /// Runs the scene progressively through its load script (preview on level 0 to equilibrium,
 /// refinement and equilibrium on each finer level, the finest to convergence) and directly on
-/// every level with the same solver settings. The scene must ask for coarse levels
-/// (Error(invalid_scene) otherwise) and be quasistatic (Error(unsupported)). Settling stops
-/// after `max_settles` solves per level.
+/// every level with the same solver settings, also to equilibrium. The scene must ask for
+/// coarse levels (Error(invalid_scene) otherwise) and be quasistatic (Error(unsupported)).
+/// Settling stops after `max_settles` solves per level and method.
 AccuracyReport run_accuracy(const Scene& scene, int max_settles = 500,
                             AccuracyProgress progress = nullptr, void* user = nullptr);
 

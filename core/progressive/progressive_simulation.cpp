@@ -122,10 +122,7 @@ void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
   r.energy = step.newton.energy;
   r.gradient_norm = step.newton.gradient_norm;
   r.simulated_time = step.time;
-  // The Newton test passed within the step: the state is an equilibrium of the level's energy
-  // at these loads (PSQ Algorithm 1 flags it when the first test passes), once every scripted
-  // motion has arrived.
-  r.equilibrium = step.newton.stop == NewtonStop::converged && step.script_reached >= 1.0;
+  r.equilibrium = step.equilibrium;
   r.obstacle_vertices = obstacle_vertex_count();
   r.reduced_offsets = step.reduced_offsets;
   r.raised_limits = step.raised_limits;

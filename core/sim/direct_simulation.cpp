@@ -316,6 +316,9 @@ StepRecord DirectSimulation::solve_at(double t, bool new_step) {
   accumulate(record.newton,
              solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
   if (fit_to_start_) restore_fitted(record);
+  record.equilibrium = !dynamic && record.newton.stop == NewtonStop::converged &&
+                       record.script_reached >= 1.0 &&
+                       (!scene_.progressive.proximal || record.newton.iterations == 0);
   if (dynamic) v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
   if (new_step) ++steps_taken_;
   record.step = steps_taken_;

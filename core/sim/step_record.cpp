@@ -30,7 +30,8 @@ std::string to_json_line(const StepRecord& r) {
                            {"solve", n.timings.solve},
                            {"line_search", n.timings.line_search}}},
                          {"terms", terms},
-                         {"script_reached", r.script_reached}};
+                         {"script_reached", r.script_reached},
+                         {"equilibrium", r.equilibrium}};
   if (r.contact) {
     const ContactStats& c = *r.contact;
     line["contact"] = {

@@ -26,6 +26,11 @@ struct StepRecord {
   /// Fraction of the handles' and obstacles' scripted motion reached this step (1: all; less
   /// when contact kept them from reaching it safely).
   double script_reached = 1.0;
+  /// The state is an equilibrium of the loads (quasistatic scenes): the solve met the Newton
+  /// tolerance and every scripted motion arrived. With PSQ eq. 1's proximal term a converged
+  /// solve is only a gradient-flow step, so there the tolerance must hold before any Newton
+  /// step (PSQ Algorithm 1: the first test passes).
+  bool equilibrium = false;
   /// Contact pairs whose offset is still lowered after a refinement that left them within
   /// their offsets (PSQ §4.4.3 relaxation by offset homotopy); 0 once the full offsets hold.
   int reduced_offsets = 0;

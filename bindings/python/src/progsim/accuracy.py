@@ -30,7 +30,7 @@ class AccuracyRow:
     error_rms: float  #: RMS distance to the converged finest result / bbox diagonal
     error_max: float  #: max distance to the converged finest result / bbox diagonal
     intersecting_pairs: int  #: face pairs crossing in the final state (CGAL exact check)
-    #: the level ended at equilibrium (progressive) or its last solve converged (direct)
+    #: the level ended at equilibrium, progressive or direct
     converged: bool
 
 

@@ -122,7 +122,7 @@ class LevelStats:
         float  #: max distance to the converged finest solution / bbox diagonal (NaN until measured)
     )
     settles: int  #: solves at a fixed time (:meth:`Simulation.settle`)
-    equilibrium: bool  #: the last solve met the tolerance
+    equilibrium: bool  #: the last solve left an equilibrium (quasistatic; see ps_level_stats)
     refine_seconds: float  #: wall time refining the coarser level into this one, s
     refinement: RefinementStats  #: how the level's start was built
     #: contact pairs whose offset is still lowered after the last solve (where contact kept a

@@ -41,8 +41,7 @@ pub struct AccuracyRow {
     pub error_max: f64,
     /// Face pairs crossing in the level's final state (CGAL's exact check).
     pub intersecting_pairs: usize,
-    /// Whether the level ended at equilibrium (progressive) or its last solve converged
-    /// (direct).
+    /// Whether the level ended at equilibrium, progressive or direct.
     pub converged: bool,
 }
 
@@ -110,7 +109,9 @@ impl Accuracy {
     fn read_row(&self, index: i32) -> Result<AccuracyRow> {
         let mut row = MaybeUninit::<sys::ps_accuracy_row>::uninit();
         // SAFETY: live handle; row outlives the call.
-        check_thread(unsafe { sys::ps_accuracy_get_row(self.raw.as_ptr(), index, row.as_mut_ptr()) })?;
+        check_thread(unsafe {
+            sys::ps_accuracy_get_row(self.raw.as_ptr(), index, row.as_mut_ptr())
+        })?;
         // SAFETY: PS_OK, so the library wrote the whole struct.
         let raw = unsafe { row.assume_init() };
         Ok(AccuracyRow {

@@ -410,7 +410,8 @@ pub struct LevelStats {
     pub error_max: Option<f64>,
     /// Solves at a fixed time ([`Simulation::settle`](crate::Simulation::settle)).
     pub settles: usize,
-    /// Whether the last solve met the tolerance.
+    /// Whether the last solve left an equilibrium (quasistatic scenes: the tolerance met with
+    /// the scripts arrived, before any Newton step with the proximal term).
     pub equilibrium: bool,
     /// Wall time refining the coarser level into this one, s.
     pub refine_seconds: f64,
