@@ -289,6 +289,35 @@ double ContactPotential::max_scripted_step(const Vector& x, const Vector& p,
   return ccd(positions_, trial_positions_);
 }
 
+Vector ContactPotential::carried_motion(const Vector& x, const Positions& obstacle_target) const {
+  const int shell = mesh_.num_shell_vertices;
+  Positions motion = Positions::Zero(shell, 3);
+  Eigen::VectorXi count = Eigen::VectorXi::Zero(shell);
+  gather_positions(x, positions_);
+  for (int item : active_items(positions_)) {
+    const Pair p = pair(item);
+    if (p.kind == Pair::Kind::ground) continue;
+    Vec3 obstacle_motion = Vec3::Zero();
+    int obstacle_vertices = 0;
+    for (int v : p.vertices)
+      if (v >= shell) {
+        obstacle_motion +=
+            (obstacle_target.row(v - shell) - obstacle_positions_.row(v - shell)).transpose();
+        ++obstacle_vertices;
+      }
+    if (obstacle_vertices == 0 || obstacle_vertices == 4) continue;
+    obstacle_motion /= obstacle_vertices;
+    for (int v : p.vertices)
+      if (v >= 0 && v < shell) {
+        motion.row(v) += obstacle_motion.transpose();
+        ++count[v];
+      }
+  }
+  for (int v = 0; v < shell; ++v)
+    if (count[v] > 0) motion.row(v) /= count[v];
+  return as_dofs(motion);
+}
+
 bool ContactPotential::end_iteration(const Vector& x) {
   gather_positions(x, positions_);
   const double gap = min_gap(positions_, nullptr);

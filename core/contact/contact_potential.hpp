@@ -59,6 +59,12 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   /// from their current positions toward `obstacle_target` (|V_obstacle| × 3) stay apart
   /// (used to advance scripted handles and obstacles).
   double max_scripted_step(const Vector& x, const Vector& p, const Positions& obstacle_target);
+  /// How the shell is carried along by obstacles moving toward `obstacle_target`: each shell
+  /// vertex of an active pair with an obstacle moves as that pair's obstacle vertices do on
+  /// average (3|V_shell| DOFs, zero elsewhere). Scripted rounds add it where an obstacle is
+  /// blocked, so that a stiff shell is pushed instead of closing the gap tenfold per round.
+  /// Uses the candidates of the last max_scripted_step() or max_step().
+  Vector carried_motion(const Vector& x, const Positions& obstacle_target) const;
   /// Moves the obstacles (|V_obstacle| × 3).
   void set_obstacle_positions(const Positions& positions);
   const Positions& obstacle_positions() const { return obstacle_positions_; }

@@ -224,7 +224,9 @@ double DirectSimulation::advance_scripts(double t, double decrement_scale, Newto
       if (!problem_->is_fixed(d)) script_step_[d] = 0.0;
     const Positions obstacles_now = contact_->obstacle_positions();
     if (script_step_.isZero(0.0) && obstacles_now == obstacle_target) return 1.0;
-    const double alpha = contact_->max_scripted_step(x_, script_step_, obstacle_target);
+    double alpha = contact_->max_scripted_step(x_, script_step_, obstacle_target);
+    if (alpha < 1.0 && carry_shell(obstacle_target))
+      alpha = contact_->max_scripted_step(x_, script_step_, obstacle_target);
     if (alpha >= 1.0) {
       x_ += script_step_;
       contact_->set_obstacle_positions(obstacle_target);
@@ -246,6 +248,20 @@ double DirectSimulation::advance_scripts(double t, double decrement_scale, Newto
     if (round_solve.iterations == 0) break;
   }
   return reached;
+}
+
+bool DirectSimulation::carry_shell(const Positions& obstacle_target) {
+  // Where an obstacle presses on the shell, the free vertices it touches move with it: a
+  // stiff shell (a can under a plate) is then pushed along and its solve spreads the motion,
+  // instead of each round closing the contact gap tenfold while the shell barely yields.
+  const Vector carried = contact_->carried_motion(x_, obstacle_target);
+  bool any = false;
+  for (int d = 0; d < problem_->num_dofs(); ++d)
+    if (!problem_->is_fixed(d) && carried[d] != 0.0) {
+      script_step_[d] = carried[d];
+      any = true;
+    }
+  return any;
 }
 
 void DirectSimulation::fit_limits_to_prescribed_motion() {

@@ -114,6 +114,9 @@ class DirectSimulation {
   /// Moves handles and obstacles toward their scripts at time t, in CCD-safe rounds with a
   /// Newton solve between rounds when contact stops them; returns the fraction reached.
   double advance_scripts(double t, double decrement_scale, NewtonReport& report);
+  /// Adds to script_step_ the motion of the free shell vertices that moving obstacles touch
+  /// (ContactPotential::carried_motion); returns whether any vertex is carried.
+  bool carry_shell(const Positions& obstacle_target);
   /// Raises the strain limits of faces a prescribed motion stretched beyond them.
   void fit_limits_to_prescribed_motion();
 

@@ -82,11 +82,13 @@ TEST(PsqScenes, BalloonInflatedAgainstAPlateIsIntersectionFreeOnEveryLevel) {
 TEST(PsqScenes, StiffThinCanCrushStaysFiniteAndIntersectionFree) {
   const Scene scene =
       bundled("psq_can_crush.json",
-              {{R"("n_around": 48, "n_along": 16)", R"("n_around": 24, "n_along": 8)"},
-               {R"("duration": 10.0)", R"("duration": 3.0)"}});
+              {{R"("n_around": 48, "n_along": 16)", R"("n_around": 24, "n_along": 8)"}});
   const AccuracyReport report = run_accuracy(scene, 100);
   ASSERT_EQ(report.rows.size(), 6u);
   expect_safe_and_converged(report);
+  // The whole 10 mm crush happened on every level: at equilibrium means the plate reached its
+  // scripted place (a stiff coarse can once held it back from the 4th step on).
+  for (const AccuracyRow& row : report.rows) EXPECT_TRUE(row.converged) << "level " << row.level;
 }
 
 TEST(PsqScenes, ClothOnSphereKeepsItsStrainLimitOnEveryLevel) {
