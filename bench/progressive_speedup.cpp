@@ -1,13 +1,17 @@
-// What the progressive method (PSQ) buys on a bundled grid scene at growing sizes: coarse
-// preview and the full progressive pipeline against the direct finest solve, measured in one
-// run per size (progsim accuracy), with both preview preconditioners. Prints a table, writes
-// CSV. Long at 40K vertices (the direct finest solve takes minutes to hours): not run in CI.
+// What the progressive method (PSQ) buys on a bundled scene at growing sizes: coarse preview
+// and the full progressive pipeline against the direct finest solve, measured in one run per
+// size (progsim accuracy). Prints a table, writes CSV. Long at 40K vertices (the direct finest
+// solve takes minutes to hours): not run in CI.
 //
-// usage: bench_progressive_speedup [scene.json] [csv_path] [grid_cells ...]
-//        scene: a bundled scene whose body is a "grid" mesh (default
-//        scenes/psq_plate_buckling.json); grid_cells: the grid's nx = ny per run (default 50 100
-//        200: 2 601, 10 201 and 40 401 vertices); the scene's own levels (3, ×4 per level)
+// usage: bench_progressive_speedup [scene.json] [csv_path] [level|galerkin|both] [factor ...]
+//        scene: a bundled scene whose body is a generated "grid" (nx, ny) or "cylinder"
+//        (n_around, n_along) mesh (default scenes/psq_plate_buckling.json); the preview
+//        preconditioner(s) (default both); factor: each run multiplies the mesh's cell counts
+//        by it (default 2 4: the bundled twist's 32 × 32 grid becomes 64 × 64 and 128 × 128).
+//        The scene's own levels (3, ×4 per level).
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -21,16 +25,37 @@ using namespace progsim;
 
 namespace {
 
-/// The scene file with its grid resized to cells × cells and the given preview Hessian.
-Scene scaled(const std::string& path, int cells, ProxyHessian hessian) {
+/// The scene file with its mesh's cell counts multiplied by `factor` and the given preview
+/// Hessian.
+Scene scaled(const std::string& path, double factor, ProxyHessian hessian) {
   std::ifstream file(path);
   std::stringstream text;
   text << file.rdbuf();
-  const std::regex grid("\"(nx|ny)\": *[0-9]+");
-  const std::string json = std::regex_replace(text.str(), grid, "\"$1\": " + std::to_string(cells));
-  Scene scene = parse_scene(json, path.substr(0, path.find_last_of('/') + 1));
+  std::string json = text.str();
+  const std::regex count("\"(nx|ny|n_around|n_along)\": *([0-9]+)");
+  std::string out;
+  std::sregex_iterator it(json.begin(), json.end(), count), end;
+  std::size_t last = 0;
+  for (; it != end; ++it) {
+    const std::smatch& m = *it;
+    const long cells = std::lround(std::stod(m[2].str()) * factor);
+    out += json.substr(last, m.position(0) - last) + "\"" + m[1].str() +
+           "\": " + std::to_string(cells);
+    last = m.position(0) + m.length(0);
+  }
+  out += json.substr(last);
+  Scene scene = parse_scene(out, path.substr(0, path.find_last_of('/') + 1));
   scene.progressive.hessian = hessian;
   return scene;
+}
+
+/// The preview preconditioners asked for ("level", "galerkin" or "both").
+std::vector<ProxyHessian> hessians(const std::string& which) {
+  if (which == "level") return {ProxyHessian::level};
+  if (which == "galerkin") return {ProxyHessian::galerkin};
+  if (which == "both") return {ProxyHessian::level, ProxyHessian::galerkin};
+  std::fprintf(stderr, "unknown preconditioner '%s' (level, galerkin or both)\n", which.c_str());
+  std::exit(2);
 }
 
 const AccuracyRow& row(const AccuracyReport& r, AccuracyRow::Method method, int level) {
@@ -50,9 +75,10 @@ int main(int argc, char** argv) {
   const std::string scene_path =
       argc > 1 ? argv[1] : PROGSIM_SOURCE_DIR "/scenes/psq_plate_buckling.json";
   const std::string csv_path = argc > 2 ? argv[2] : "progressive_speedup.csv";
-  std::vector<int> sizes;
-  for (int k = 3; k < argc; ++k) sizes.push_back(std::stoi(argv[k]));
-  if (sizes.empty()) sizes = {50, 100, 200};
+  const std::vector<ProxyHessian> preconditioners = hessians(argc > 3 ? argv[3] : "both");
+  std::vector<double> factors;
+  for (int k = 4; k < argc; ++k) factors.push_back(std::stod(argv[k]));
+  if (factors.empty()) factors = {2.0, 4.0};
   std::ofstream csv(csv_path);
   csv << "scene,vertices,levels,coarsest,proxy_hessian,preview_seconds,direct_finest_seconds,"
          "preview_speedup,progressive_seconds,progressive_speedup,refine_share,"
@@ -60,11 +86,11 @@ int main(int argc, char** argv) {
   std::printf("%9s %6s %8s %9s %9s %8s %9s %8s %7s %9s %9s\n", "vertices", "coarse", "hessian",
               "preview s", "direct s", "preview×", "progr. s", "progr.×", "refine%", "prev.err",
               "dir0.err");
-  for (int cells : sizes)
-    for (ProxyHessian hessian : {ProxyHessian::level, ProxyHessian::galerkin}) {
+  for (double factor : factors)
+    for (ProxyHessian hessian : preconditioners) {
       const char* name = hessian == ProxyHessian::level ? "level" : "galerkin";
-      const Scene scene = scaled(scene_path, cells, hessian);
-      std::fprintf(stderr, "%s %d×%d, %s preconditioner\n", scene.name.c_str(), cells, cells, name);
+      const Scene scene = scaled(scene_path, factor, hessian);
+      std::fprintf(stderr, "%s, cells ×%g, %s preconditioner\n", scene.name.c_str(), factor, name);
       const AccuracyReport r = run_accuracy(scene, 500, report_phase, nullptr);
       int finest = 0;
       for (const AccuracyRow& x : r.rows) finest = std::max(finest, x.level);

@@ -197,6 +197,38 @@ TEST_F(Cli, AccuracyWritesTableCsvAndPlots) {
   EXPECT_EQ(lines, 6);  // 3 levels, progressive and direct
 }
 
+TEST_F(Cli, RunPreviewsAProgressiveSceneThenRefinesItLevelByLevel) {
+  const fs::path out = dir_ / "plate";
+  const CommandResult r = run_cli("run " + std::string(PROGSIM_SOURCE_DIR) +
+                                  "/scenes/psq_plate_buckling.json --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("preview"), std::string::npos) << r.output;  // the progress bar
+  const auto summary = nlohmann::json::parse(std::ifstream(out / "summary.json"));
+  const auto& levels = summary.at("levels");
+  ASSERT_EQ(levels.size(), 3u);
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    SCOPED_TRACE("level " + std::to_string(l));
+    EXPECT_TRUE(levels[l].at("equilibrium").get<bool>());
+    EXPECT_EQ(levels[l].at("crossing_face_pairs").get<int>(), 0);
+    EXPECT_TRUE(fs::is_regular_file(out / ("level_" + std::to_string(l) + ".obj")));
+    if (l > 0) EXPECT_GT(levels[l].at("vertices"), levels[l - 1].at("vertices"));
+  }
+  // The preview stands for the converged result: its error against it is measured and small.
+  EXPECT_LT(levels[0].at("error_max").get<double>(), 0.05);
+  EXPECT_EQ(levels[2].at("error_max").get<double>(), 0.0);
+  // Preview frames are on the finest mesh; the log tags every solve with its level.
+  std::ifstream frame(out / "frame_00000.obj");
+  int vertices = 0;
+  for (std::string line; std::getline(frame, line);) vertices += line.rfind("v ", 0) == 0;
+  EXPECT_EQ(vertices, levels[2].at("vertices").get<int>());
+  std::ifstream log(out / "steps.jsonl");
+  std::vector<int> solves(3, 0);
+  for (std::string line; std::getline(log, line);)
+    ++solves.at(nlohmann::json::parse(line)["level"]);
+  EXPECT_GT(solves[0], 0);
+  EXPECT_GT(solves[2], 0);
+}
+
 TEST_F(Cli, AccuracyNeedsCoarseLevels) {
   const CommandResult r =
       run_cli("accuracy " + scene(kGrid).string() + " --out " + (dir_ / "x").string());

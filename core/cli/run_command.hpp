@@ -1,0 +1,29 @@
+#pragma once
+/// @file `progsim run`: simulate a scene and write meshes, a per-solve log and a summary. A
+/// quasistatic scene with a `progressive` section runs as PSQ (preview on the coarsest level,
+/// then refinement level by level to the converged finest result); any other directly.
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace progsim::cli {
+
+/// Options of `progsim run SCENE --out DIR [--steps N] [--max-settles N] [--direct] [--quiet]`.
+struct RunCommand {
+  std::string scene_path;
+  std::string out_dir;
+  int steps = 0;          ///< load steps; 0: the scene's
+  int max_settles = 500;  ///< progressive: solves per level while waiting for equilibrium
+  bool direct = false;    ///< solve a progressive scene directly on its finest mesh
+  bool quiet = false;
+};
+
+/// Registers the subcommand on app; options are written into `options` when parsed.
+CLI::App* add_run_command(CLI::App& app, RunCommand& options);
+
+/// Runs the scene and writes its results into the output folder: frame_*.obj (the finest
+/// mesh; progressive previews prolonged to it), level_*.obj (each level's final state on its
+/// own mesh, progressive), steps.jsonl and summary.json; prints the summary. Everything is
+/// loaded and validated before the folder is touched. Throws progsim::Error on bad input.
+int run_run_command(const RunCommand& options);
+
+}  // namespace progsim::cli
