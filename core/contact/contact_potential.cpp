@@ -315,7 +315,45 @@ Vector ContactPotential::carried_motion(const Vector& x, const Positions& obstac
   }
   for (int v = 0; v < shell; ++v)
     if (count[v] > 0) motion.row(v) /= count[v];
+  carry_through_shell_contacts(motion, count);
   return as_dofs(motion);
+}
+
+void ContactPotential::carry_through_shell_contacts(Positions& motion,
+                                                    Eigen::VectorXi& carried) const {
+  // A pushed layer pushes the layers it touches (a crushed can's folds stacked under the
+  // plate): uncarried vertices of a shell pair with carried ones take their mean motion,
+  // sweep after sweep until no pair adds any.
+  const int shell = mesh_.num_shell_vertices;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int item : active_) {
+      const Pair p = pair(item);
+      // Pairs with an obstacle vertex were carried directly; the ground does not push.
+      if (p.kind == Pair::Kind::ground ||
+          std::any_of(p.vertices.begin(), p.vertices.end(), [&](int v) { return v >= shell; }))
+        continue;
+      Vec3 pushed = Vec3::Zero();
+      int pushers = 0, free = 0;
+      for (int v : p.vertices) {
+        if (v < 0) continue;
+        if (carried[v] > 0) {
+          pushed += motion.row(v).transpose();
+          ++pushers;
+        } else {
+          ++free;
+        }
+      }
+      if (pushers == 0 || free == 0) continue;
+      pushed /= pushers;
+      for (int v : p.vertices)
+        if (v >= 0 && carried[v] == 0) {
+          motion.row(v) = pushed.transpose();
+          carried[v] = 1;
+        }
+      grew = true;
+    }
+  }
 }
 
 bool ContactPotential::end_iteration(const Vector& x) {

@@ -107,6 +107,9 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   double mollifier_threshold_of(const Pair& pair) const;
   /// κ m b of one pair at stencil positions xs; gradient and Hessian when non-null.
   double pair_energy(const Pair& pair, const Vec12& xs, Vec12* grad, Mat12* hess) const;
+  /// Spreads carried_motion() through the active shell–shell pairs (of active_): a vertex
+  /// touching carried ones is carried too. `carried` > 0 marks the carried vertices.
+  void carry_through_shell_contacts(Positions& motion, Eigen::VectorXi& carried) const;
   /// Squared distance of every item at `positions` into distances_squared_ (parallel).
   void measure_distances(const Positions& positions) const;
   /// The items within the activation gap (a reference to a reused buffer).

@@ -11,6 +11,7 @@
 
 #include "progressive/accuracy.hpp"
 #include "progressive/progressive_simulation.hpp"
+#include "progressive/state_distance.hpp"
 #include "scene/scene_json.hpp"
 
 using namespace progsim;
@@ -82,13 +83,42 @@ TEST(PsqScenes, BalloonInflatedAgainstAPlateIsIntersectionFreeOnEveryLevel) {
 TEST(PsqScenes, StiffThinCanCrushStaysFiniteAndIntersectionFree) {
   const Scene scene =
       bundled("psq_can_crush.json",
-              {{R"("n_around": 48, "n_along": 16)", R"("n_around": 24, "n_along": 8)"}});
+              {{R"("n_around": 72, "n_along": 24)", R"("n_around": 24, "n_along": 8)"}});
   const AccuracyReport report = run_accuracy(scene, 100);
   ASSERT_EQ(report.rows.size(), 6u);
   expect_safe_and_converged(report);
   // The whole 10 mm crush happened on every level: at equilibrium means the plate reached its
   // scripted place (a stiff coarse can once held it back from the 4th step on).
   for (const AccuracyRow& row : report.rows) EXPECT_TRUE(row.converged) << "level " << row.level;
+}
+
+TEST(PsqScenes, StiffThinCanPreviewDoesNotLockLikeTheDirectCoarseSolve) {
+  // PSQ Fig. 4: the direct coarse can locks (its coarse triangles cannot bend without
+  // stretching), the preview with the finest elastics buckles like the converged result.
+  // Bundled size (1800 vertices, levels of 113 and 450): the CI size's coarsest level has 14.
+  const Scene scene = bundled("psq_can_crush.json", {});
+  ProgressiveSimulation psq(scene);
+  for (int s = 0; s < scene.num_steps(); ++s) psq.step();
+  ASSERT_TRUE(psq.settle_to_equilibrium(500));
+  while (psq.level() < psq.finest()) {
+    psq.refine();
+    ASSERT_TRUE(psq.settle_to_equilibrium(500)) << "level " << psq.level();
+  }
+  DirectSimulation coarse(scene, SimulationLevel{psq.shared_hierarchy(), 0, {}});
+  StepRecord last;
+  for (int s = 0; s < scene.num_steps(); ++s) last = coarse.step();
+  for (int k = 0; k < 500 && !last.equilibrium; ++k) last = coarse.settle();
+  ASSERT_TRUE(last.equilibrium);  // fully crushed too
+  const Positions finest = psq.positions(psq.finest());
+  const double diagonal = bounding_box_diagonal(psq.hierarchy().levels.back().rest.vertices);
+  const StateDistance preview = *psq.error_against_finest(0);
+  const StateDistance direct =
+      state_distance(psq.prolong_to_finest(0, Positions(coarse.positions())), finest, diagonal);
+  std::printf("[ can ] preview error RMS %.4f max %.4f; direct coarse RMS %.4f max %.4f\n",
+              preview.rms, preview.max, direct.rms, direct.max);
+  EXPECT_LT(preview.rms, 0.08);  // measured 0.049
+  EXPECT_LT(preview.rms, direct.rms);
+  EXPECT_LT(preview.max, direct.max);
 }
 
 TEST(PsqScenes, ClothOnSphereKeepsItsStrainLimitOnEveryLevel) {
