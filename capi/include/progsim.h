@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 5
+#define PS_VERSION_MINOR 6
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -471,6 +471,11 @@ typedef struct ps_level_stats {
   int32_t reduced_offsets;
   /** Faces whose strain limit is still raised after the last solve; 0 normally. */
   int32_t raised_limits;
+  /** Obstacle vertices the level's contact meets: fewer than the scene's on coarse levels
+   *  when obstacles are progressive (PSQ §4.6); 0 without obstacles. */
+  int32_t obstacle_vertices;
+  /** How the progressive obstacles were refined into this level (PSQ §4.6; zeros without). */
+  ps_refinement_stats obstacle_refinement;
 } ps_level_stats;
 
 /** Statistics of `level` into *out. Levels not visited yet report zeros (NaN errors). */

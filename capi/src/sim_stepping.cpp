@@ -134,6 +134,8 @@ PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level
     stats.refinement = refinement_stats(r.refinement);
     stats.reduced_offsets = r.reduced_offsets;
     stats.raised_limits = r.raised_limits;
+    stats.obstacle_vertices = r.obstacle_vertices;
+    stats.obstacle_refinement = refinement_stats(r.obstacle_refinement);
     *out = stats;
   });
 }

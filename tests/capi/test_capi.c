@@ -51,8 +51,8 @@ static void test_version(void) {
   CHECK_ERROR(ps_check_version(PS_VERSION_HEADER + 10000), PS_ERROR_VERSION_MISMATCH,
               ps_last_error(), "rebuild the caller");
   /* Before 1.0 an older minor's structs are smaller than the library's: refused. */
-  CHECK_ERROR(ps_check_version(PS_VERSION_HEADER - 100), PS_ERROR_VERSION_MISMATCH,
-              ps_last_error(), "rebuild the caller");
+  CHECK_ERROR(ps_check_version(PS_VERSION_HEADER - 100), PS_ERROR_VERSION_MISMATCH, ps_last_error(),
+              "rebuild the caller");
   CHECK(strcmp(ps_status_name(PS_ERROR_INVALID_MESH), "PS_ERROR_INVALID_MESH") == 0);
 }
 
@@ -483,6 +483,29 @@ static void test_accuracy(void) {
   CHECK(accuracy == NULL);
 }
 
+/* A progressive obstacle (PSQ §4.6): the coarse level meets a decimated copy of the sphere, the
+ * finest the sphere itself, refined with the cloth. */
+static void test_progressive_obstacle(void) {
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create_from_scene_file(path_in_source("tests/data/progressive_obstacle.json"),
+                                      &sim) == PS_OK);
+  if (!sim) return;
+  int32_t equilibrium = 0;
+  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
+  CHECK(ps_sim_settle(sim, 300, &equilibrium) == PS_OK && equilibrium == 1);
+  CHECK(ps_sim_refine(sim) == PS_OK);
+  CHECK(ps_sim_settle(sim, 300, &equilibrium) == PS_OK && equilibrium == 1);
+  ps_level_stats coarse, fine;
+  CHECK(ps_sim_get_level_stats(sim, 0, &coarse) == PS_OK);
+  CHECK(ps_sim_get_level_stats(sim, 1, &fine) == PS_OK);
+  CHECK(fine.obstacle_vertices == 162); /* the sphere's own vertices */
+  CHECK(coarse.obstacle_vertices > 0 && coarse.obstacle_vertices < fine.obstacle_vertices);
+  CHECK(coarse.obstacle_refinement.splits == 0);
+  CHECK(fine.obstacle_refinement.splits == fine.obstacle_vertices - coarse.obstacle_vertices);
+  CHECK(fine.obstacle_refinement.reached > 0.0 && fine.obstacle_refinement.reached <= 1.0);
+  ps_sim_destroy(sim);
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_capi SOURCE_DIR\n");
@@ -496,6 +519,7 @@ int main(int argc, char** argv) {
   test_scene_file();
   test_levels();
   test_progressive();
+  test_progressive_obstacle();
   test_accuracy();
   if (failures)
     fprintf(stderr, "%d checks failed\n", failures);

@@ -74,6 +74,22 @@ def test_refinement_with_contact_reports_its_splits():
             assert isinstance(stats, progsim.RefinementStats)
 
 
+def test_progressive_obstacle_statistics():
+    """A progressive sphere (PSQ §4.6): decimated on the coarse level, refined with the cloth."""
+    scene = Path(__file__).resolve().parents[3] / "tests" / "data" / "progressive_obstacle.json"
+    with progsim.Simulation.from_scene_file(scene) as sim:
+        sim.step_preview(1)
+        assert sim.settle(300)
+        sim.refine()
+        assert sim.settle(300)
+        coarse, fine = sim.level_stats(0), sim.level_stats(1)
+        assert fine.obstacle_vertices == 162  # the sphere's own vertices
+        assert 0 < coarse.obstacle_vertices < fine.obstacle_vertices
+        assert coarse.obstacle_refinement.splits == 0
+        assert fine.obstacle_refinement.splits == fine.obstacle_vertices - coarse.obstacle_vertices
+        assert 0.0 < fine.obstacle_refinement.reached <= 1.0
+
+
 def test_pins_must_be_the_hierarchys(hanging):
     with pytest.raises(progsim.InvalidArgumentError, match="pinned_vertices"):
         progsim.Simulation(

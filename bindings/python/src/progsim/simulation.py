@@ -129,6 +129,10 @@ class LevelStats:
     #: split from opening fully); 0 normally
     reduced_offsets: int
     raised_limits: int  #: faces whose strain limit is still raised after the last solve
+    #: obstacle vertices the level's contact meets (fewer on coarse levels with progressive
+    #: obstacles, PSQ §4.6)
+    obstacle_vertices: int
+    obstacle_refinement: RefinementStats  #: how the progressive obstacles were refined into it
 
 
 def _effect_bit(name: str) -> int:
@@ -649,6 +653,8 @@ class Simulation(NativeObject):
             refinement=RefinementStats._from_native(out.refinement),
             reduced_offsets=int(out.reduced_offsets),
             raised_limits=int(out.raised_limits),
+            obstacle_vertices=int(out.obstacle_vertices),
+            obstacle_refinement=RefinementStats._from_native(out.obstacle_refinement),
         )
 
     def __repr__(self) -> str:

@@ -422,6 +422,11 @@ pub struct LevelStats {
     pub reduced_offsets: usize,
     /// Faces whose strain limit is still raised after the last solve; 0 normally.
     pub raised_limits: usize,
+    /// Obstacle vertices the level's contact meets: fewer than the scene's on coarse levels
+    /// when obstacles are progressive (PSQ §4.6); 0 without obstacles.
+    pub obstacle_vertices: usize,
+    /// How the progressive obstacles were refined into this level (zeros without).
+    pub obstacle_refinement: RefinementStats,
 }
 
 /// How a level's start was built from the coarser level by safe refinement (PSQ §4.4); all
@@ -487,6 +492,8 @@ impl From<sys::ps_level_stats> for LevelStats {
             refinement: RefinementStats::from(raw.refinement),
             reduced_offsets: crate::count_from(raw.reduced_offsets),
             raised_limits: crate::count_from(raw.raised_limits),
+            obstacle_vertices: crate::count_from(raw.obstacle_vertices),
+            obstacle_refinement: RefinementStats::from(raw.obstacle_refinement),
         }
     }
 }

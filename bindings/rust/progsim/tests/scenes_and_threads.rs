@@ -8,6 +8,23 @@ use common::{repo_path, square_cloth, TOP_CORNERS};
 use progsim::{Hierarchy, Simulation, SimulationDef};
 
 #[test]
+fn progressive_obstacle_is_decimated_then_refined_with_the_cloth() {
+    // PSQ §4.6: the coarse level meets a decimated copy of the sphere, the finest the sphere.
+    let mut sim =
+        Simulation::from_scene_file(repo_path("tests/data/progressive_obstacle.json")).unwrap();
+    sim.step_preview(1).unwrap();
+    assert!(sim.settle(300).unwrap());
+    sim.refine().unwrap();
+    assert!(sim.settle(300).unwrap());
+    let (coarse, fine) = (sim.level_stats(0).unwrap(), sim.level_stats(1).unwrap());
+    assert_eq!(fine.obstacle_vertices, 162); // the sphere's own vertices
+    assert!(coarse.obstacle_vertices > 0 && coarse.obstacle_vertices < fine.obstacle_vertices);
+    assert_eq!(coarse.obstacle_refinement.splits, 0);
+    assert_eq!(fine.obstacle_refinement.splits, fine.obstacle_vertices - coarse.obstacle_vertices);
+    assert!(fine.obstacle_refinement.reached > 0.0 && fine.obstacle_refinement.reached <= 1.0);
+}
+
+#[test]
 fn scene_file_simulation_owns_its_hierarchy() {
     let mut sim = Simulation::from_scene_file(repo_path("scenes/hanging_cloth.json")).unwrap();
     let hierarchy = sim.hierarchy().expect("a scene simulation owns its hierarchy");
