@@ -535,7 +535,8 @@ PS_API int32_t ps_accuracy_num_rows(const ps_accuracy* accuracy, int32_t* out);
 PS_API int32_t ps_accuracy_get_row(const ps_accuracy* accuracy, int32_t index,
                                    ps_accuracy_row* out);
 
-/** Writes accuracy.csv, accuracy.md and the two PNG plots into directory `dir` (created).
+/** Writes accuracy.csv, accuracy.md and the three PNG plots (error_vs_time, error_by_level,
+ *  time_by_level) into directory `dir` (created).
  *  Errors: PS_ERROR_IO naming the file, PS_ERROR_NULL_ARGUMENT. */
 PS_API int32_t ps_accuracy_write(const ps_accuracy* accuracy, const char* dir);
 

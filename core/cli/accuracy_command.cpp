@@ -31,8 +31,10 @@ int run_accuracy_command(const AccuracyCommand& options) {
   if (!options.quiet) bar.finish();
   write_accuracy_report(report, options.out_dir);
   std::printf("%s", accuracy_markdown(report).c_str());
-  std::printf("results: %s (accuracy.csv, accuracy.md, error_vs_time.png, error_by_level.png)\n",
-              options.out_dir.c_str());
+  std::printf(
+      "results: %s (accuracy.csv, accuracy.md, error_vs_time.png, error_by_level.png, "
+      "time_by_level.png)\n",
+      options.out_dir.c_str());
   return 0;
 }
 

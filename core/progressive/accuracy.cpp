@@ -98,6 +98,28 @@ void plot(const AccuracyReport& report, bool by_vertices, const std::string& pat
   write_line_plot_png(spec, path);
 }
 
+/// Wall time by level (the converged finest included, whose error a log axis cannot show):
+/// progressive until the level's equilibrium, direct for the level alone.
+void plot_time(const AccuracyReport& report, const std::string& path) {
+  PlotSpec spec;
+  spec.title = report.scene + ": time by level";
+  spec.x_label = "vertices of the level";
+  spec.y_label = "wall time (s)";
+  spec.log_x = spec.log_y = true;
+  for (Method m : {Method::progressive, Method::direct}) {
+    PlotSeries s;
+    s.label = m == Method::progressive ? "progressive, to reach the level"
+                                       : "direct, solving the level alone";
+    for (const AccuracyRow& row : report.rows)
+      if (row.method == m) {
+        s.x.push_back(row.vertices);
+        s.y.push_back(row.seconds);
+      }
+    spec.series.push_back(s);
+  }
+  write_line_plot_png(spec, path);
+}
+
 void write_text(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
@@ -237,6 +259,7 @@ void write_accuracy_report(const AccuracyReport& report, const std::string& dir)
   write_text(out / "accuracy.md", accuracy_markdown(report));
   plot(report, false, (out / "error_vs_time.png").string());
   plot(report, true, (out / "error_by_level.png").string());
+  plot_time(report, (out / "time_by_level.png").string());
 }
 
 }  // namespace progsim

@@ -180,8 +180,8 @@ TEST_F(Cli, AccuracyWritesTableCsvAndPlots) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("| progressive | 0 |"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("coarse preview vs direct finest"), std::string::npos);
-  for (const char* name :
-       {"accuracy.csv", "accuracy.md", "error_vs_time.png", "error_by_level.png"})
+  for (const char* name : {"accuracy.csv", "accuracy.md", "error_vs_time.png", "error_by_level.png",
+                           "time_by_level.png"})
     EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
   std::ifstream csv(out / "accuracy.csv");
   std::string header;

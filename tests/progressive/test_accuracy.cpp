@@ -62,7 +62,7 @@ TEST(Accuracy, WritesCsvMarkdownAndPngPlots) {
   const std::string md = accuracy_markdown(plate_report());
   EXPECT_NE(md.find("| method | level | vertices |"), std::string::npos);
   EXPECT_NE(md.find("x faster"), std::string::npos);
-  for (const char* png : {"error_vs_time.png", "error_by_level.png"}) {
+  for (const char* png : {"error_vs_time.png", "error_by_level.png", "time_by_level.png"}) {
     cairo_surface_t* image = cairo_image_surface_create_from_png((dir / png).c_str());
     EXPECT_EQ(cairo_surface_status(image), CAIRO_STATUS_SUCCESS) << png;
     EXPECT_EQ(cairo_image_surface_get_width(image), 900) << png;

@@ -122,7 +122,13 @@ def test_accuracy_report(tmp_path):
         report.write(tmp_path / "plate")
     assert "progressive level 1" in phases and "direct level 2" in phases
     written = sorted(p.name for p in (tmp_path / "plate").iterdir())
-    assert written == ["accuracy.csv", "accuracy.md", "error_by_level.png", "error_vs_time.png"]
+    assert written == [
+        "accuracy.csv",
+        "accuracy.md",
+        "error_by_level.png",
+        "error_vs_time.png",
+        "time_by_level.png",
+    ]
     assert (tmp_path / "plate" / "error_vs_time.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 

@@ -94,8 +94,8 @@ class Accuracy(NativeObject):
         )
 
     def write(self, directory: PathLike) -> None:
-        """Writes ``accuracy.csv``, ``accuracy.md``, ``error_vs_time.png`` and
-        ``error_by_level.png`` into ``directory`` (created).
+        """Writes ``accuracy.csv``, ``accuracy.md``, ``error_vs_time.png``,
+        ``error_by_level.png`` and ``time_by_level.png`` into ``directory`` (created).
 
         Raises:
             ProgsimIOError: a file cannot be written.

@@ -87,8 +87,8 @@ impl Accuracy {
         &self.rows
     }
 
-    /// Writes `accuracy.csv`, `accuracy.md`, `error_vs_time.png` and `error_by_level.png`
-    /// into `dir` (created).
+    /// Writes `accuracy.csv`, `accuracy.md`, `error_vs_time.png`, `error_by_level.png` and
+    /// `time_by_level.png` into `dir` (created).
     ///
     /// # Errors
     /// [`Status::Io`] naming a file that cannot be written.

@@ -30,6 +30,7 @@ fn plate_rows_errors_and_files() {
     accuracy.write(&dir).unwrap();
     assert!(dir.join("accuracy.csv").is_file());
     assert!(dir.join("error_vs_time.png").is_file());
+    assert!(dir.join("time_by_level.png").is_file());
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
