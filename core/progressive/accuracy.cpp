@@ -74,49 +74,68 @@ int finest_level(const AccuracyReport& report) {
   return finest;
 }
 
-/// Error (max or RMS) against x = time or vertices, one series per method.
-PlotSeries series(const AccuracyReport& report, Method method, bool max, bool by_vertices) {
+using RowValue = double (*)(const AccuracyRow&);
+
+/// The rows of `method` as points (x(row), y(row)).
+PlotSeries series(const AccuracyReport& report, Method method, std::string label, RowValue x,
+                  RowValue y, bool lines) {
   PlotSeries s;
-  s.label = std::string(method_name(method)) + (max ? ", max" : ", RMS");
-  s.lines = method == Method::progressive;
-  for (const AccuracyRow& row : report.rows) {
-    if (row.method != method) continue;
-    s.x.push_back(by_vertices ? row.vertices : row.seconds);
-    s.y.push_back(max ? row.error_max : row.error_rms);
-  }
+  s.label = std::move(label);
+  s.lines = lines;
+  for (const AccuracyRow& row : report.rows)
+    if (row.method == method) {
+      s.x.push_back(x(row));
+      s.y.push_back(y(row));
+    }
   return s;
 }
 
-void plot(const AccuracyReport& report, bool by_vertices, const std::string& path) {
+PlotSpec log_log_plot(const std::string& title, const char* x_label, const char* y_label) {
   PlotSpec spec;
-  spec.title = report.scene + (by_vertices ? ": error by level" : ": error vs time");
-  spec.x_label = by_vertices ? "vertices of the level" : "wall time (s)";
-  spec.y_label = "distance to converged finest / bbox diagonal";
+  spec.title = title;
+  spec.x_label = x_label;
+  spec.y_label = y_label;
   spec.log_x = spec.log_y = true;
+  return spec;
+}
+
+double vertices_of(const AccuracyRow& r) {
+  return r.vertices;
+}
+double seconds_of(const AccuracyRow& r) {
+  return r.seconds;
+}
+double error_max_of(const AccuracyRow& r) {
+  return r.error_max;
+}
+double error_rms_of(const AccuracyRow& r) {
+  return r.error_rms;
+}
+
+/// Error (max and RMS) against x = time or vertices, one series per method and measure.
+void plot(const AccuracyReport& report, bool by_vertices, const std::string& path) {
+  PlotSpec spec =
+      log_log_plot(report.scene + (by_vertices ? ": error by level" : ": error vs time"),
+                   by_vertices ? "vertices of the level" : "wall time (s)",
+                   "distance to converged finest / bbox diagonal");
   for (Method m : {Method::progressive, Method::direct})
-    for (bool max : {true, false}) spec.series.push_back(series(report, m, max, by_vertices));
+    for (bool max : {true, false})
+      spec.series.push_back(series(report, m,
+                                   std::string(method_name(m)) + (max ? ", max" : ", RMS"),
+                                   by_vertices ? vertices_of : seconds_of,
+                                   max ? error_max_of : error_rms_of, m == Method::progressive));
   write_line_plot_png(spec, path);
 }
 
 /// Wall time by level (the converged finest included, whose error a log axis cannot show):
 /// progressive until the level's equilibrium, direct for the level alone.
 void plot_time(const AccuracyReport& report, const std::string& path) {
-  PlotSpec spec;
-  spec.title = report.scene + ": time by level";
-  spec.x_label = "vertices of the level";
-  spec.y_label = "wall time (s)";
-  spec.log_x = spec.log_y = true;
-  for (Method m : {Method::progressive, Method::direct}) {
-    PlotSeries s;
-    s.label = m == Method::progressive ? "progressive, to reach the level"
-                                       : "direct, solving the level alone";
-    for (const AccuracyRow& row : report.rows)
-      if (row.method == m) {
-        s.x.push_back(row.vertices);
-        s.y.push_back(row.seconds);
-      }
-    spec.series.push_back(s);
-  }
+  PlotSpec spec =
+      log_log_plot(report.scene + ": time by level", "vertices of the level", "wall time (s)");
+  spec.series.push_back(series(report, Method::progressive, "progressive, to reach the level",
+                               vertices_of, seconds_of, true));
+  spec.series.push_back(series(report, Method::direct, "direct, solving the level alone",
+                               vertices_of, seconds_of, true));
   write_line_plot_png(spec, path);
 }
 
