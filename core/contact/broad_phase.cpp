@@ -1,6 +1,7 @@
 #include "contact/broad_phase.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -13,8 +14,6 @@ namespace {
 struct Box {
   Vec3 lo, hi;
 };
-
-using Key = std::uint64_t;
 
 bool overlap(const Box& a, const Box& b) {
   return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
@@ -44,96 +43,183 @@ std::vector<Box> boxes(int count, IndexOf index_of, const Positions& p0, const P
   return out;
 }
 
-/// A uniform grid over boxes (a spatial hash with sorted keys): each box is listed in every
-/// cell it overlaps; boxes spanning more than kMaxCells cells are kept apart as "large".
+/// Integer cell coordinates (i, j, k) of a uniform grid.
+using Cell = std::array<long, 3>;
+
+/// A uniform grid over boxes: each box is listed in every cell it overlaps; boxes spanning more
+/// than kMaxCells cells are kept apart as "large". Cells are stored densely (a counting sort
+/// over the cells of the small boxes' bounding region, O(1) lookup) unless that region has
+/// more than kDenseCellsPerEntry cells per listing, e.g. a far-away obstacle; then as a
+/// spatial hash with sorted keys (binary-search lookup).
 class BoxGrid {
  public:
   static constexpr long kMaxCells = 64;
+  static constexpr long kDenseCellsPerEntry = 8;
 
   BoxGrid(const std::vector<Box>& boxes, double cell) : inverse_cell_(1.0 / cell) {
     const int n = static_cast<int>(boxes.size());
-    std::vector<long> offsets(n + 1, 0);
+    lo_.resize(n);
+    std::vector<Cell> hi(n);
+    std::vector<long> count(n + 1, 0);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
-    for (int i = 0; i < n; ++i) {
-      const long c = cell_count(boxes[i]);
-      offsets[i + 1] = c <= kMaxCells ? c : 0;
+    for (int b = 0; b < n; ++b) {
+      lo_[b] = cell_of(boxes[b].lo);
+      hi[b] = cell_of(boxes[b].hi);
+      count[b + 1] = cell_count(lo_[b], hi[b]);
     }
-    for (int i = 0; i < n; ++i) {
-      if (is_large(boxes[i])) large_.push_back(i);
-      offsets[i + 1] += offsets[i];
+    Cell min_cell{kNoCell, kNoCell, kNoCell}, max_cell{-kNoCell, -kNoCell, -kNoCell};
+    long listings = 0;
+    for (int b = 0; b < n; ++b) {
+      if (count[b + 1] > kMaxCells) {
+        large_.push_back(b);
+        continue;
+      }
+      listings += count[b + 1];
+      for (int a = 0; a < 3; ++a) {
+        min_cell[a] = std::min(min_cell[a], lo_[b][a]);
+        max_cell[a] = std::max(max_cell[a], hi[b][a]);
+      }
     }
-    entries_.resize(offsets[n]);
-#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
-    for (int i = 0; i < n; ++i) {
-      long k = offsets[i];
-      if (offsets[i + 1] > k) for_each_cell(boxes[i], [&](Key key) { entries_[k++] = {key, i}; });
+    if (listings == 0) return;
+    origin_ = min_cell;
+    long cells = 1;
+    for (int a = 0; a < 3 && cells > 0; ++a) {
+      extent_[a] = max_cell[a] - min_cell[a] + 1;
+      cells = extent_[a] <= kDenseCellsPerEntry * listings ? cells * extent_[a] : 0;
+      if (cells > kDenseCellsPerEntry * listings) cells = 0;
     }
-    std::sort(entries_.begin(), entries_.end());
+    if (cells > 0)
+      build_dense(hi, cells);
+    else
+      build_hashed(hi, listings);
   }
 
   bool is_large(const Box& b) const {
-    return cell_count(b) > kMaxCells;
+    return cell_count(cell_of(b.lo), cell_of(b.hi)) > kMaxCells;
   }
   const std::vector<int>& large() const {
     return large_;
   }
 
   /// The cell holding point x.
-  Key cell_of(const Vec3& x) const {
-    return key(index(x.x()), index(x.y()), index(x.z()));
+  Cell cell_of(const Vec3& x) const {
+    return {index(x.x()), index(x.y()), index(x.z())};
+  }
+  /// The cell holding box b's lower corner.
+  const Cell& lower_cell(int b) const {
+    return lo_[b];
   }
 
-  /// Calls visit(key) for every cell the box overlaps.
+  /// Calls visit(cell) for every cell the box overlaps.
   template <class Visit>
   void for_each_cell(const Box& b, Visit visit) const {
-    for (long i = index(b.lo.x()); i <= index(b.hi.x()); ++i)
-      for (long j = index(b.lo.y()); j <= index(b.hi.y()); ++j)
-        for (long k = index(b.lo.z()); k <= index(b.hi.z()); ++k) visit(key(i, j, k));
+    for_each_cell_of(cell_of(b.lo), cell_of(b.hi), visit);
   }
 
-  /// Calls visit(box) for every small box listed in cell `key`.
+  /// Calls visit(box) for every small box listed in `cell`, in increasing box order.
   template <class Visit>
-  void for_each_in_cell(Key key, Visit visit) const {
-    auto it = std::lower_bound(entries_.begin(), entries_.end(), Entry{key, -1});
-    for (; it != entries_.end() && it->key == key; ++it) visit(it->box);
+  void for_each_in_cell(const Cell& cell, Visit visit) const {
+    if (!dense_start_.empty()) {
+      const long slot = dense_slot(cell);
+      if (slot < 0) return;
+      for (long k = dense_start_[slot]; k < dense_start_[slot + 1]; ++k) visit(dense_boxes_[k]);
+      return;
+    }
+    const Key key = hash(cell);
+    auto it = std::lower_bound(hashed_.begin(), hashed_.end(), Entry{key, -1});
+    for (; it != hashed_.end() && it->key == key; ++it) visit(it->box);
   }
 
  private:
+  using Key = std::uint64_t;
   struct Entry {
     Key key;
     int box;
     bool operator<(const Entry& o) const { return key != o.key ? key < o.key : box < o.box; }
   };
+  static constexpr long kNoCell = std::numeric_limits<long>::max() / 4;
 
   /// Cell index along an axis, clamped so that huge coordinates cannot overflow the cast.
   long index(double x) const {
     return static_cast<long>(std::clamp(std::floor(x * inverse_cell_), -1e15, 1e15));
   }
 
-  /// 21 bits per axis; distant cells that wrap onto one key only cost extra box tests.
-  static Key key(long i, long j, long k) {
-    constexpr long mask = (1L << 21) - 1;
-    return (static_cast<Key>(i & mask) << 42) | (static_cast<Key>(j & mask) << 21) |
-           static_cast<Key>(k & mask);
-  }
-
-  long cell_count(const Box& b) const {
+  static long cell_count(const Cell& lo, const Cell& hi) {
     long count = 1;
     for (int a = 0; a < 3; ++a) {
-      count *= index(b.hi[a]) - index(b.lo[a]) + 1;
+      count *= hi[a] - lo[a] + 1;
       if (count > kMaxCells) return kMaxCells + 1;
     }
     return count;
   }
 
+  template <class Visit>
+  static void for_each_cell_of(const Cell& lo, const Cell& hi, Visit visit) {
+    for (long i = lo[0]; i <= hi[0]; ++i)
+      for (long j = lo[1]; j <= hi[1]; ++j)
+        for (long k = lo[2]; k <= hi[2]; ++k) visit(Cell{i, j, k});
+  }
+
+  bool is_small(int b) const {
+    return !std::binary_search(large_.begin(), large_.end(), b);
+  }
+
+  /// Row-major slot of a cell in the dense region, or −1 outside it.
+  long dense_slot(const Cell& c) const {
+    long slot = 0;
+    for (int a = 0; a < 3; ++a) {
+      const long d = c[a] - origin_[a];
+      if (d < 0 || d >= extent_[a]) return -1;
+      slot = slot * extent_[a] + d;
+    }
+    return slot;
+  }
+
+  /// Counting sort of the small boxes into their cells (box order kept within a cell).
+  void build_dense(const std::vector<Cell>& hi, long cells) {
+    const int n = static_cast<int>(lo_.size());
+    dense_start_.assign(cells + 1, 0);
+    for (int b = 0; b < n; ++b)
+      if (is_small(b))
+        for_each_cell_of(lo_[b], hi[b], [&](const Cell& c) { ++dense_start_[dense_slot(c) + 1]; });
+    for (long c = 0; c < cells; ++c) dense_start_[c + 1] += dense_start_[c];
+    dense_boxes_.resize(dense_start_[cells]);
+    std::vector<long> cursor(dense_start_.begin(), dense_start_.end() - 1);
+    for (int b = 0; b < n; ++b)
+      if (is_small(b))
+        for_each_cell_of(lo_[b], hi[b],
+                         [&](const Cell& c) { dense_boxes_[cursor[dense_slot(c)]++] = b; });
+  }
+
+  /// 21 bits per axis; distant cells that wrap onto one key only cost extra box tests.
+  static Key hash(const Cell& c) {
+    constexpr long mask = (1L << 21) - 1;
+    return (static_cast<Key>(c[0] & mask) << 42) | (static_cast<Key>(c[1] & mask) << 21) |
+           static_cast<Key>(c[2] & mask);
+  }
+
+  void build_hashed(const std::vector<Cell>& hi, long listings) {
+    const int n = static_cast<int>(lo_.size());
+    hashed_.reserve(listings);
+    for (int b = 0; b < n; ++b)
+      if (is_small(b))
+        for_each_cell_of(lo_[b], hi[b], [&](const Cell& c) { hashed_.push_back({hash(c), b}); });
+    std::sort(hashed_.begin(), hashed_.end());
+  }
+
   double inverse_cell_;
-  std::vector<Entry> entries_;
+  std::vector<Cell> lo_;  ///< lower cell of every box
   std::vector<int> large_;
+  Cell origin_{}, extent_{};
+  std::vector<long> dense_start_;  ///< CSR offsets per dense slot
+  std::vector<int> dense_boxes_;
+  std::vector<Entry> hashed_;
 };
 
 /// Every (query, target) whose boxes overlap and that `accept` keeps, sorted. A pair of small
-/// boxes is reported from exactly one cell, the one holding the lower corner of their overlap;
-/// a large box is tested against every box of the other set.
+/// boxes is reported from exactly one cell, the one holding the lower corner of their overlap
+/// (the larger lower cell of the two, per axis); a large box is tested against every box of
+/// the other set. `accept` is asked first: it is cheaper than the box test.
 template <class Accept>
 std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& queries,
                                                   const std::vector<Box>& targets, double cell,
@@ -148,16 +234,20 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& querie
     for (int q = 0; q < n; ++q) {
       const Box& box = queries[q];
       auto consider = [&](int t) {
-        if (overlap(box, targets[t]) && accept(q, t)) local.push_back({q, t});
+        if (accept(q, t) && overlap(box, targets[t])) local.push_back({q, t});
       };
       if (grid.is_large(box)) {
         for (int t = 0; t < static_cast<int>(targets.size()); ++t) consider(t);
         continue;
       }
       for (int t : grid.large()) consider(t);
-      grid.for_each_cell(box, [&](Key key) {
-        grid.for_each_in_cell(key, [&](int t) {
-          if (grid.cell_of(box.lo.cwiseMax(targets[t].lo)) == key) consider(t);
+      const Cell query_lo = grid.cell_of(box.lo);
+      grid.for_each_cell(box, [&](const Cell& c) {
+        grid.for_each_in_cell(c, [&](int t) {
+          const Cell& target_lo = grid.lower_cell(t);
+          for (int a = 0; a < 3; ++a)
+            if (std::max(query_lo[a], target_lo[a]) != c[a]) return;  // reported elsewhere
+          consider(t);
         });
       });
     }

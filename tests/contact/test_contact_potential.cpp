@@ -191,40 +191,65 @@ TEST(FrictionPotential, SlidingForceIsCoulombsMuTimesTheNormalForce) {
   }
 }
 
-class BroadPhase : public ::testing::TestWithParam<bool> {};
+/// Broad-phase cases: with a spike (a few primitives far larger than the grid cell, the
+/// "large" path) and with a second obstacle 10 km away (the grid's region then has too many
+/// cells to store densely: the hashed path).
+struct BroadPhaseCase {
+  bool spike;
+  bool far_obstacle;
+};
+
+class BroadPhase : public ::testing::TestWithParam<BroadPhaseCase> {};
 
 TEST_P(BroadPhase, FindsEveryPairWithinTheGapLikeBruteForce) {
-  // A crumpled sheet: every vertex–face and edge–edge pair whose boxes overlap, by brute force.
-  // With the spike, a few primitives are far larger than the grid cell (the "large" path).
+  // A crumpled sheet moving over a sphere obstacle: every vertex–face and edge–edge pair whose
+  // swept boxes overlap, by brute force, except pairs sharing a vertex or of two obstacles.
   TriangleMesh sheet = make_grid(1.0, 1.0, 8, 8);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> noise(-0.08, 0.08);
   for (Eigen::Index i = 0; i < sheet.vertices.rows(); ++i)
     sheet.vertices(i, 2) = noise(rng) + 0.3 * std::sin(6.0 * sheet.vertices(i, 0));
-  if (GetParam()) sheet.vertices(40, 2) += 3.0;
+  if (GetParam().spike) sheet.vertices(40, 2) += 3.0;
+  TriangleMesh sphere = make_sphere(0.3, 1);
+  sphere.vertices.col(0).array() += 0.5;
+  sphere.vertices.col(1).array() += 0.5;
+  sphere.vertices.col(2).array() -= 0.2;
+  TriangleMesh far = make_sphere(0.3, 0);
+  far.vertices.array() += 1e4;
+  std::vector<ObstacleSurface> obstacles{{&sphere.vertices, &sphere.faces, 0.0}};
+  if (GetParam().far_obstacle) obstacles.push_back({&far.vertices, &far.faces, 0.0});
   const auto mesh = build_collision_mesh(sheet.vertices, sheet.faces,
                                          std::vector<double>(sheet.num_vertices(), 0.0),
-                                         std::vector<double>(sheet.num_vertices(), 0.0), {});
+                                         std::vector<double>(sheet.num_vertices(), 0.0), obstacles);
+  Positions p1 = mesh.rest;
+  for (int v = 0; v < mesh.num_shell_vertices; ++v)
+    p1.row(v) += Vec3(0.03 * noise(rng), 0.03 * noise(rng), -0.1).transpose();
   CandidateSet found;
   const double inflation = 0.05;
-  find_candidates(mesh, mesh.rest, mesh.rest, inflation, found);
+  find_candidates(mesh, mesh.rest, p1, inflation, found);
   auto box_gap = [&](std::initializer_list<int> a, std::initializer_list<int> b) {
-    double gap = 0.0;  // largest per-axis separation of the two primitives' boxes
+    double gap = 0.0;  // largest per-axis separation of the two primitives' swept boxes
     for (int k = 0; k < 3; ++k) {
       double alo = 1e9, ahi = -1e9, blo = 1e9, bhi = -1e9;
-      for (int v : a) alo = std::min(alo, mesh.rest(v, k)), ahi = std::max(ahi, mesh.rest(v, k));
-      for (int v : b) blo = std::min(blo, mesh.rest(v, k)), bhi = std::max(bhi, mesh.rest(v, k));
+      for (const Positions* p : {&mesh.rest, const_cast<const Positions*>(&p1)}) {
+        for (int v : a) alo = std::min(alo, (*p)(v, k)), ahi = std::max(ahi, (*p)(v, k));
+        for (int v : b) blo = std::min(blo, (*p)(v, k)), bhi = std::max(bhi, (*p)(v, k));
+      }
       gap = std::max(gap, std::max(blo - ahi, alo - bhi));
     }
     return gap;
   };
-  std::size_t expected_vf = 0, expected_ee = 0;
+  // Found: every pair within the gap, and no pair beyond it (up to rounding at the boundary),
+  // none twice.
+  const double sure = inflation * (1.0 - 1e-9), at_most = inflation * (1.0 + 1e-9);
+  std::size_t obstacle_pairs = 0, edge_pairs = 0;
   for (int v = 0; v < mesh.num_vertices(); ++v)
     for (int f = 0; f < mesh.faces.rows(); ++f) {
       const auto face = mesh.faces.row(f);
       if (face[0] == v || face[1] == v || face[2] == v) continue;
-      if (box_gap({v}, {face[0], face[1], face[2]}) > inflation) continue;
-      ++expected_vf;
+      if (mesh.is_obstacle(v) && mesh.is_obstacle(face[0])) continue;
+      if (box_gap({v}, {face[0], face[1], face[2]}) > sure) continue;
+      obstacle_pairs += mesh.is_obstacle(v) || mesh.is_obstacle(face[0]);
       EXPECT_TRUE(std::binary_search(found.vertex_face.begin(), found.vertex_face.end(),
                                      std::array<int, 2>{v, f}));
     }
@@ -233,15 +258,35 @@ TEST_P(BroadPhase, FindsEveryPairWithinTheGapLikeBruteForce) {
       const auto& ea = mesh.edges[a];
       const auto& eb = mesh.edges[b];
       if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
-      if (box_gap({ea[0], ea[1]}, {eb[0], eb[1]}) > inflation) continue;
-      ++expected_ee;
+      if (mesh.is_obstacle(ea[0]) && mesh.is_obstacle(eb[0])) continue;
+      if (box_gap({ea[0], ea[1]}, {eb[0], eb[1]}) > sure) continue;
+      ++edge_pairs;
+      EXPECT_TRUE(std::binary_search(found.edge_edge.begin(), found.edge_edge.end(),
+                                     std::array<int, 2>{static_cast<int>(a), static_cast<int>(b)}));
     }
-  EXPECT_EQ(found.vertex_face.size(), expected_vf);
-  EXPECT_EQ(found.edge_edge.size(), expected_ee);
-  EXPECT_GT(expected_ee, 0u);
+  for (const auto& [v, f] : found.vertex_face) {
+    const auto face = mesh.faces.row(f);
+    EXPECT_LE(box_gap({v}, {face[0], face[1], face[2]}), at_most) << v << ", " << f;
+    EXPECT_FALSE(mesh.is_obstacle(v) && mesh.is_obstacle(face[0]));
+  }
+  for (const auto& [a, b] : found.edge_edge) {
+    EXPECT_LT(a, b);
+    EXPECT_LE(box_gap({mesh.edges[a][0], mesh.edges[a][1]}, {mesh.edges[b][0], mesh.edges[b][1]}),
+              at_most);
+    EXPECT_FALSE(mesh.is_obstacle(mesh.edges[a][0]) && mesh.is_obstacle(mesh.edges[b][0]));
+  }
+  EXPECT_EQ(std::adjacent_find(found.vertex_face.begin(), found.vertex_face.end()),
+            found.vertex_face.end());
+  EXPECT_EQ(std::adjacent_find(found.edge_edge.begin(), found.edge_edge.end()),
+            found.edge_edge.end());
+  EXPECT_GT(edge_pairs, 0u);
+  EXPECT_GT(obstacle_pairs, 0u);  // the sheet reaches the sphere
 }
 
-INSTANTIATE_TEST_SUITE_P(WithAndWithoutOversizedBoxes, BroadPhase, ::testing::Bool());
+INSTANTIATE_TEST_SUITE_P(WithLargeBoxesAndFarObstacles, BroadPhase,
+                         ::testing::Values(BroadPhaseCase{false, false},
+                                           BroadPhaseCase{true, false}, BroadPhaseCase{false, true},
+                                           BroadPhaseCase{true, true}));
 
 TEST(ContactPotential, FitOffsetsLowersOnlyThePairsInsideAndRaisesThemBack) {
   auto configs = configurations(0.0);
