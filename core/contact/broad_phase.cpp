@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
+#include <string>
 
+#include "common/error.hpp"
 #include "common/parallel.hpp"
 
 namespace progsim {
@@ -216,46 +219,76 @@ class BoxGrid {
   std::vector<Entry> hashed_;
 };
 
-/// Every (query, target) whose boxes overlap and that `accept` keeps, sorted. A pair of small
-/// boxes is reported from exactly one cell, the one holding the lower corner of their overlap
-/// (the larger lower cell of the two, per axis); a large box is tested against every box of
-/// the other set. `accept` is asked first: it is cheaper than the box test.
+/// Every (query, target) of the listed boxes whose boxes overlap and that `accept` keeps, as
+/// indices into `queries` and `targets`, unsorted. A pair of small boxes is reported from
+/// exactly one cell, the one holding the lower corner of their overlap (the larger lower cell
+/// of the two, per axis); a large box is tested against every listed box of the other set.
+/// `accept` is asked first: it is cheaper than the box test.
 template <class Accept>
 std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& queries,
-                                                  const std::vector<Box>& targets, double cell,
+                                                  const std::vector<int>& query_ids,
+                                                  const std::vector<Box>& targets,
+                                                  const std::vector<int>& target_ids, double cell,
                                                   Accept accept) {
-  const BoxGrid grid(targets, cell);
+  std::vector<Box> listed(target_ids.size());
+  for (std::size_t k = 0; k < target_ids.size(); ++k) listed[k] = targets[target_ids[k]];
+  const BoxGrid grid(listed, cell);
   std::vector<std::array<int, 2>> pairs;
-  const int n = static_cast<int>(queries.size());
+  const int n = static_cast<int>(query_ids.size());
 #pragma omp parallel if (n >= kMinParallelItems)
   {
     std::vector<std::array<int, 2>> local;
 #pragma omp for schedule(dynamic, 256) nowait
-    for (int q = 0; q < n; ++q) {
+    for (int i = 0; i < n; ++i) {
+      const int q = query_ids[i];
       const Box& box = queries[q];
-      auto consider = [&](int t) {
-        if (accept(q, t) && overlap(box, targets[t])) local.push_back({q, t});
+      auto consider = [&](int k) {
+        const int t = target_ids[k];
+        if (accept(q, t) && overlap(box, listed[k])) local.push_back({q, t});
       };
       if (grid.is_large(box)) {
-        for (int t = 0; t < static_cast<int>(targets.size()); ++t) consider(t);
+        for (int k = 0; k < static_cast<int>(listed.size()); ++k) consider(k);
         continue;
       }
-      for (int t : grid.large()) consider(t);
+      for (int k : grid.large()) consider(k);
       const Cell query_lo = grid.cell_of(box.lo);
       grid.for_each_cell(box, [&](const Cell& c) {
-        grid.for_each_in_cell(c, [&](int t) {
-          const Cell& target_lo = grid.lower_cell(t);
+        grid.for_each_in_cell(c, [&](int k) {
+          const Cell& target_lo = grid.lower_cell(k);
           for (int a = 0; a < 3; ++a)
             if (std::max(query_lo[a], target_lo[a]) != c[a]) return;  // reported elsewhere
-          consider(t);
+          consider(k);
         });
       });
     }
 #pragma omp critical
     pairs.insert(pairs.end(), local.begin(), local.end());
   }
-  std::sort(pairs.begin(), pairs.end());
   return pairs;
+}
+
+/// 0, 1, …, n − 1.
+std::vector<int> all_indices(int n) {
+  std::vector<int> out(n);
+  std::iota(out.begin(), out.end(), 0);
+  return out;
+}
+
+/// The indices whose flag equals `flag`.
+std::vector<int> indices_where(const std::vector<char>& flags, char flag) {
+  std::vector<int> out;
+  for (int i = 0; i < static_cast<int>(flags.size()); ++i)
+    if (flags[i] == flag) out.push_back(i);
+  return out;
+}
+
+/// Per primitive of K vertices: whether any of its vertices moves.
+template <int K, class IndexOf>
+std::vector<char> primitives_moving(int count, IndexOf index_of, const std::vector<char>& moving) {
+  std::vector<char> out(count, 0);
+  for (int i = 0; i < count; ++i)
+    for (int k = 0; k < K; ++k) out[i] = out[i] || moving[index_of(i)[k]];
+  return out;
 }
 
 /// Grid cell size: the mean largest extent of the boxes (at least the inflation).
@@ -268,32 +301,59 @@ double cell_size(const std::vector<Box>& boxes, double inflation) {
 }  // namespace
 
 void find_candidates(const CollisionMesh& mesh, const Positions& p0, const Positions& p1,
-                     double inflation, CandidateSet& out) {
+                     double inflation, CandidateSet& out, const std::vector<char>* moving) {
   const double r = 0.5 * inflation;  // two boxes grown by r overlap iff gap ≤ 2r per axis
   const int nv = mesh.num_vertices();
   const int nf = static_cast<int>(mesh.faces.rows());
   const int ne = static_cast<int>(mesh.edges.size());
-  std::vector<int> vertex_ids(nv);
-  for (int v = 0; v < nv; ++v) vertex_ids[v] = v;
-  const auto vertex_boxes = boxes<1>(
-      nv, [&](int v) { return &vertex_ids[v]; }, p0, p1, r);
-  const auto face_boxes = boxes<3>(
-      nf, [&](int f) { return mesh.faces.row(f).data(); }, p0, p1, r);
-  const auto edge_boxes = boxes<2>(
-      ne, [&](int e) { return mesh.edges[e].data(); }, p0, p1, r);
+  if (moving && static_cast<int>(moving->size()) != nv)
+    fail(Status::invalid_argument, "find_candidates: " + std::to_string(moving->size()) +
+                                       " moving flags for " + std::to_string(nv) + " vertices");
+  const std::vector<int> vertex_ids = all_indices(nv);
+  const auto vertex_of = [&](int v) { return &vertex_ids[v]; };
+  const auto face_of = [&](int f) { return mesh.faces.row(f).data(); };
+  const auto edge_of = [&](int e) { return mesh.edges[e].data(); };
+  const auto vertex_boxes = boxes<1>(nv, vertex_of, p0, p1, r);
+  const auto face_boxes = boxes<3>(nf, face_of, p0, p1, r);
+  const auto edge_boxes = boxes<2>(ne, edge_of, p0, p1, r);
   const double cell = cell_size(edge_boxes, inflation);
-  out.vertex_face = overlapping_pairs(vertex_boxes, face_boxes, cell, [&](int v, int f) {
+  const auto vertex_face = [&](int v, int f) {
     const auto face = mesh.faces.row(f);
     if (face[0] == v || face[1] == v || face[2] == v) return false;
     return !(mesh.is_obstacle(v) && mesh.is_obstacle(face[0]));
-  });
-  out.edge_edge = overlapping_pairs(edge_boxes, edge_boxes, cell, [&](int a, int b) {
-    if (b <= a) return false;
+  };
+  const auto edge_edge = [&](int a, int b) {
     const auto& ea = mesh.edges[a];
     const auto& eb = mesh.edges[b];
     if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) return false;
     return !(mesh.is_obstacle(ea[0]) && mesh.is_obstacle(eb[0]));
-  });
+  };
+  if (!moving) {
+    const std::vector<int> edges = all_indices(ne);
+    out.vertex_face =
+        overlapping_pairs(vertex_boxes, vertex_ids, face_boxes, all_indices(nf), cell, vertex_face);
+    out.edge_edge = overlapping_pairs(edge_boxes, edges, edge_boxes, edges, cell,
+                                      [&](int a, int b) { return a < b && edge_edge(a, b); });
+  } else {
+    // Pairs with a moving vertex: moving vertices against every face and the others against
+    // the moving faces; moving edges against every edge, a pair of two moving edges once.
+    const std::vector<char> face_moves = primitives_moving<3>(nf, face_of, *moving);
+    const std::vector<char> edge_moves = primitives_moving<2>(ne, edge_of, *moving);
+    out.vertex_face = overlapping_pairs(vertex_boxes, indices_where(*moving, 1), face_boxes,
+                                        all_indices(nf), cell, vertex_face);
+    const auto still_vertex_moving_face =
+        overlapping_pairs(vertex_boxes, indices_where(*moving, 0), face_boxes,
+                          indices_where(face_moves, 1), cell, vertex_face);
+    out.vertex_face.insert(out.vertex_face.end(), still_vertex_moving_face.begin(),
+                           still_vertex_moving_face.end());
+    out.edge_edge = overlapping_pairs(
+        edge_boxes, indices_where(edge_moves, 1), edge_boxes, all_indices(ne), cell,
+        [&](int a, int b) { return (!edge_moves[b] || a < b) && edge_edge(a, b); });
+    for (auto& pair : out.edge_edge)
+      if (pair[1] < pair[0]) std::swap(pair[0], pair[1]);
+  }
+  std::sort(out.vertex_face.begin(), out.vertex_face.end());
+  std::sort(out.edge_edge.begin(), out.edge_edge.end());
 }
 
 }  // namespace progsim

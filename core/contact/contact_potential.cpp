@@ -228,7 +228,7 @@ void ContactPotential::append_hessian_triplets(const Vector& x, bool project,
 
 void ContactPotential::update_candidates(const Positions& p0, const Positions& p1) {
   ScopedTimer timer(stats_.broad_phase_seconds);
-  find_candidates(mesh_, p0, p1, dhat_ + 2.0 * mesh_.max_offset(), candidates_);
+  find_candidates(mesh_, p0, p1, dhat_ + 2.0 * mesh_.max_offset(), candidates_, moving());
   ++stats_.broad_phase_runs;
   stats_.candidate_pairs += static_cast<std::int64_t>(candidates_.size());
 }
@@ -403,11 +403,19 @@ ContactPotential::PairKey ContactPotential::key_of(const Pair& pair) {
           pair.vertices[3]};
 }
 
+void ContactPotential::set_moving_vertices(std::vector<char> moving) {
+  if (!moving.empty() && static_cast<int>(moving.size()) != mesh_.num_vertices())
+    fail(Status::invalid_argument, "contact: " + std::to_string(moving.size()) +
+                                       " moving flags for " + std::to_string(mesh_.num_vertices()) +
+                                       " vertices");
+  moving_ = std::move(moving);
+}
+
 int ContactPotential::fit_offsets(const Vector& x) {
   const auto previous = std::move(lowered_);
   lowered_.clear();  // pair() gives the full offsets below
   gather_positions(x, positions_);
-  find_candidates(mesh_, positions_, positions_, 2.0 * mesh_.max_offset(), candidates_);
+  find_candidates(mesh_, positions_, positions_, 2.0 * mesh_.max_offset(), candidates_, moving());
   for (int k = 0; k < num_items(); ++k) {
     const Pair p = pair(k);
     const double d =

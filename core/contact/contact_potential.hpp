@@ -67,6 +67,11 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   Vector carried_motion(const Vector& x, const Positions& obstacle_target) const;
   /// Moves the obstacles (|V_obstacle| × 3).
   void set_obstacle_positions(const Positions& positions);
+  /// Leaves out the pairs whose vertices are all still (`moving`: one flag per collision
+  /// vertex; empty: none left out). Their distances do not change, so leaving them out changes
+  /// the energy by a constant only: valid while no other vertex moves (a local relaxation).
+  /// Throws Error(invalid_argument) if `moving` is neither empty nor one flag per vertex.
+  void set_moving_vertices(std::vector<char> moving);
   const Positions& obstacle_positions() const { return obstacle_positions_; }
 
   /// Throws Error(intersecting) naming the closest pair if any pair of x is at or inside its
@@ -119,6 +124,8 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   /// Positions of every collision vertex: shell from x, obstacles from obstacle_positions_.
   void gather_positions(const Vector& x, Positions& out) const;
   void update_candidates(const Positions& p0, const Positions& p1);
+  /// The moving-vertex flags for find_candidates(), or nullptr for every pair.
+  const std::vector<char>* moving() const { return moving_.empty() ? nullptr : &moving_; }
   double ccd(const Positions& p0, const Positions& p1);
   double min_gap(const Positions& positions, int* closest_item) const;
   std::string describe(int item) const;
@@ -137,6 +144,7 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   std::optional<GroundPlane> ground_;
   Positions obstacle_positions_;
   CandidateSet candidates_;
+  std::vector<char> moving_;  ///< set_moving_vertices(); empty: every pair
   double last_min_gap_ = std::numeric_limits<double>::infinity();
   mutable ContactStats stats_;
   mutable Positions positions_, trial_positions_;

@@ -22,6 +22,9 @@ NewtonReport relax_toward_targets(const CollisionMesh& mesh, const Positions& ta
       mesh, dhat, ContactPotential::stiffness_for_force(0.1 * edge, dhat, 2.0 * mesh.max_offset()),
       ground);
   contact->set_obstacle_positions(points.bottomRows(mesh.num_obstacle_vertices));
+  std::vector<char> moving(mesh.num_vertices(), 0);  // the rest keep their distances
+  for (int v : free) moving[v] = 1;
+  contact->set_moving_vertices(std::move(moving));
   Vector x = as_dofs(Positions(points.topRows(n)));
   contact->fit_offsets(x);
   problem.add_term(std::move(contact));

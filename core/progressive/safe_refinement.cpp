@@ -295,27 +295,24 @@ class Expansion {
       moved[b] = compact_[j];
       end.row(moved[b]) += step[b].transpose();
     }
-    CandidateSet candidates;
-    find_candidates(mesh_, points_, end, 2.0 * mesh_.max_offset(), candidates);
+    std::vector<char> moves(mesh_.num_vertices(), 0);
+    for (int v = 0; v < mesh_.num_vertices(); ++v) moves[v] = owner[v] >= 0 && moved[owner[v]] == v;
+    CandidateSet candidates;  // the pairs with a moved vertex
+    find_candidates(mesh_, points_, end, 2.0 * mesh_.max_offset(), candidates, &moves);
     std::vector<double> t(n, 1.0);
     for (int c = 0; c < static_cast<int>(candidates.size()); ++c) {
       const ContactPair p = candidate_pair(mesh_, candidates, c);
       int first = -2;  // the patch of the pair's vertices: −1 for several or none
-      bool moves = false;
-      for (int v : p.vertices) {
-        if (v < 0) continue;
-        first = first == -2 ? owner[v] : (first == owner[v] ? first : -1);
-        moves = moves || (owner[v] >= 0 && moved[owner[v]] == v);
-      }
-      if (!moves || first >= 0) continue;  // still, or inside one patch (checked below)
+      for (int v : p.vertices)
+        if (v >= 0) first = first == -2 ? owner[v] : (first == owner[v] ? first : -1);
+      if (first >= 0) continue;  // inside one patch (checked below)
       const Vec12 xs = stencil_positions(p.vertices, points_);
       const double d = std::sqrt(pair_distance_squared(p, xs, ground()));
       const double bound =
           pair_safe_step(p, xs, stencil_positions(p.vertices, end) - xs,
                          d > p.offset ? p.offset : 0.0, settings_.far_ratio, ground());
       for (int v : p.vertices)
-        if (v >= 0 && owner[v] >= 0 && moved[owner[v]] == v)
-          t[owner[v]] = std::min(t[owner[v]], bound);
+        if (v >= 0 && moves[v]) t[owner[v]] = std::min(t[owner[v]], bound);
     }
     std::vector<char> done(n, 0);
 #pragma omp parallel for schedule(dynamic, 4)
@@ -378,13 +375,11 @@ class Expansion {
       end.row(c) = target_.row(v);
       start_distance += (end.row(c) - points_.row(c)).norm();
     }
-    CandidateSet candidates;
-    find_candidates(mesh_, points_, end, 2.0 * mesh_.max_offset(), candidates);
+    CandidateSet candidates;  // the pairs with a mover
+    find_candidates(mesh_, points_, end, 2.0 * mesh_.max_offset(), candidates, &moving);
     std::vector<ContactPair> pairs;
-    for (int k = 0; k < static_cast<int>(candidates.size()); ++k) {
-      const ContactPair p = candidate_pair(mesh_, candidates, k);
-      if (touches(p, moving)) pairs.push_back(p);
-    }
+    for (int k = 0; k < static_cast<int>(candidates.size()); ++k)
+      pairs.push_back(candidate_pair(mesh_, candidates, k));
     if (around_.ground)
       for (int v : movers) pairs.push_back(ground_pair(mesh_, compact_[v]));
     std::vector<PairClass> kind(pairs.size());

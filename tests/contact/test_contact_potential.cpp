@@ -80,6 +80,38 @@ TEST(ContactPotential, DerivativesMatchFiniteDifferencesForEveryDistanceType) {
   }
 }
 
+TEST(ContactPotential, MovingVerticesLeaveOutOnlyPairsOfStillOnes) {
+  // Triangle A in z = 0, B and C each with a vertex just above it, far from each other. With
+  // only C moving, the energy loses B's pair, a constant as C moves; C's forces are unchanged.
+  Positions x(9, 3);
+  x << 0, 0, 0, 1, 0, 0, 0, 1, 0,                    // A
+      0.3, 0.3, 4e-3, 0.5, 0.3, 0.5, 0.3, 0.6, 0.5,  // B
+      0.7, 0.1, 3e-3, 0.9, 0.1, 0.5, 0.7, 0.2, 0.5;  // C
+  Faces faces(3, 3);
+  faces << 0, 1, 2, 3, 4, 5, 6, 7, 8;
+  const CollisionMesh mesh =
+      build_collision_mesh(x, faces, std::vector<double>(9, 0.0), std::vector<double>(9, 0.0), {});
+  ContactPotential full(mesh, kDhat, 3.0, std::nullopt), only_c(mesh, kDhat, 3.0, std::nullopt);
+  only_c.set_moving_vertices({0, 0, 0, 0, 0, 0, 1, 1, 1});
+  const auto energy_gap = [&](const Vector& dofs) {
+    full.begin_solve(dofs);
+    only_c.begin_solve(dofs);
+    return full.value(dofs) - only_c.value(dofs);
+  };
+  Vector dofs = as_dofs(x);
+  const double left_out = energy_gap(dofs);
+  EXPECT_GT(left_out, 0.0);            // B's pair
+  EXPECT_GT(only_c.value(dofs), 0.0);  // C's pair
+  Vector g_full = Vector::Zero(27), g_c = Vector::Zero(27);
+  full.add_gradient(dofs, g_full);
+  only_c.add_gradient(dofs, g_c);
+  EXPECT_LT((g_full.tail(9) - g_c.tail(9)).norm(), 1e-12 * g_full.tail(9).norm());
+  EXPECT_GT(g_full.tail(9).norm(), 0.0);
+  dofs[20] -= 1e-3;  // C's vertex closer to A
+  EXPECT_NEAR(energy_gap(dofs), left_out, 1e-12 * left_out);
+  EXPECT_THROW(only_c.set_moving_vertices({1, 0}), Error);
+}
+
 TEST(ContactPotential, NearlyParallelEdgesAreMollifiedSmoothly) {
   // The mollifier scales the parallel pair's barrier down; its derivatives stay finite.
   auto configs = configurations(0.4 * kDhat);
@@ -281,6 +313,28 @@ TEST_P(BroadPhase, FindsEveryPairWithinTheGapLikeBruteForce) {
             found.edge_edge.end());
   EXPECT_GT(edge_pairs, 0u);
   EXPECT_GT(obstacle_pairs, 0u);  // the sheet reaches the sphere
+  // With a third of the vertices moving (obstacle ones too), exactly the pairs that touch one.
+  std::vector<char> moving(mesh.num_vertices(), 0);
+  for (int v = 0; v < mesh.num_vertices(); ++v) moving[v] = rng() % 3 == 0;
+  const auto touches_moving = [&](std::initializer_list<int> vertices) {
+    for (int v : vertices)
+      if (moving[v]) return true;
+    return false;
+  };
+  CandidateSet expected, masked;
+  for (const auto& [v, f] : found.vertex_face)
+    if (touches_moving({v, mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)}))
+      expected.vertex_face.push_back({v, f});
+  for (const auto& [a, b] : found.edge_edge)
+    if (touches_moving({mesh.edges[a][0], mesh.edges[a][1], mesh.edges[b][0], mesh.edges[b][1]}))
+      expected.edge_edge.push_back({a, b});
+  find_candidates(mesh, mesh.rest, p1, inflation, masked, &moving);
+  EXPECT_EQ(masked.vertex_face, expected.vertex_face);
+  EXPECT_EQ(masked.edge_edge, expected.edge_edge);
+  EXPECT_LT(masked.size(), found.size());
+  EXPECT_GT(masked.size(), 0u);
+  moving.pop_back();
+  EXPECT_THROW(find_candidates(mesh, mesh.rest, p1, inflation, masked, &moving), Error);
 }
 
 INSTANTIATE_TEST_SUITE_P(WithLargeBoxesAndFarObstacles, BroadPhase,
