@@ -274,11 +274,11 @@ std::vector<int> all_indices(int n) {
   return out;
 }
 
-/// The indices whose flag equals `flag`.
-std::vector<int> indices_where(const std::vector<char>& flags, char flag) {
+/// The indices whose flag is set (`set`) or clear (`!set`); any non-zero flag is set.
+std::vector<int> indices_where(const std::vector<char>& flags, bool set) {
   std::vector<int> out;
   for (int i = 0; i < static_cast<int>(flags.size()); ++i)
-    if (flags[i] == flag) out.push_back(i);
+    if ((flags[i] != 0) == set) out.push_back(i);
   return out;
 }
 
@@ -339,15 +339,15 @@ void find_candidates(const CollisionMesh& mesh, const Positions& p0, const Posit
     // the moving faces; moving edges against every edge, a pair of two moving edges once.
     const std::vector<char> face_moves = primitives_moving<3>(nf, face_of, *moving);
     const std::vector<char> edge_moves = primitives_moving<2>(ne, edge_of, *moving);
-    out.vertex_face = overlapping_pairs(vertex_boxes, indices_where(*moving, 1), face_boxes,
+    out.vertex_face = overlapping_pairs(vertex_boxes, indices_where(*moving, true), face_boxes,
                                         all_indices(nf), cell, vertex_face);
     const auto still_vertex_moving_face =
-        overlapping_pairs(vertex_boxes, indices_where(*moving, 0), face_boxes,
-                          indices_where(face_moves, 1), cell, vertex_face);
+        overlapping_pairs(vertex_boxes, indices_where(*moving, false), face_boxes,
+                          indices_where(face_moves, true), cell, vertex_face);
     out.vertex_face.insert(out.vertex_face.end(), still_vertex_moving_face.begin(),
                            still_vertex_moving_face.end());
     out.edge_edge = overlapping_pairs(
-        edge_boxes, indices_where(edge_moves, 1), edge_boxes, all_indices(ne), cell,
+        edge_boxes, indices_where(edge_moves, true), edge_boxes, all_indices(ne), cell,
         [&](int a, int b) { return (!edge_moves[b] || a < b) && edge_edge(a, b); });
     for (auto& pair : out.edge_edge)
       if (pair[1] < pair[0]) std::swap(pair[0], pair[1]);

@@ -24,9 +24,9 @@ struct CandidateSet {
 /// primitives are left out. Boxes are binned in a uniform grid whose cell is the mean edge-box
 /// size; each overlapping pair is reported from one cell only; OpenMP-parallel over primitives.
 /// The output is sorted, so it does not depend on the thread count.
-/// With `moving` (one flag per collision vertex), only the pairs with a moving vertex are
-/// reported: a pair of still vertices keeps its distance, so a solve or an advancement that
-/// moves a few vertices need not pay for the rest of the mesh.
+/// With `moving` (one flag per collision vertex, non-zero for moving), only the pairs with a
+/// moving vertex are reported: a pair of still vertices keeps its distance, so a solve or an
+/// advancement that moves a few vertices need not pay for the rest of the mesh.
 /// @param p0, p1 (|V_collision| × 3) positions
 /// @throws Error(invalid_argument) if `moving` has the wrong size
 void find_candidates(const CollisionMesh& mesh, const Positions& p0, const Positions& p1,

@@ -68,9 +68,12 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   /// Moves the obstacles (|V_obstacle| × 3).
   void set_obstacle_positions(const Positions& positions);
   /// Leaves out the pairs whose vertices are all still (`moving`: one flag per collision
-  /// vertex; empty: none left out). Their distances do not change, so leaving them out changes
-  /// the energy by a constant only: valid while no other vertex moves (a local relaxation).
-  /// Throws Error(invalid_argument) if `moving` is neither empty nor one flag per vertex.
+  /// vertex, non-zero for moving; empty: none left out). Their distances do not change, so
+  /// leaving them out changes the energy by a constant only. Valid only while the unflagged
+  /// vertices, obstacles included, stay where they are (a local relaxation with the rest
+  /// fixed): CCD, check_separated(), carried_motion() and the minimum gap then see only the
+  /// pairs with a flagged vertex. Throws Error(invalid_argument) if `moving` is neither empty
+  /// nor one flag per vertex.
   void set_moving_vertices(std::vector<char> moving);
   const Positions& obstacle_positions() const { return obstacle_positions_; }
 

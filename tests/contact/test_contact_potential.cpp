@@ -241,7 +241,7 @@ TEST_P(BroadPhase, FindsEveryPairWithinTheGapLikeBruteForce) {
   std::uniform_real_distribution<double> noise(-0.08, 0.08);
   for (Eigen::Index i = 0; i < sheet.vertices.rows(); ++i)
     sheet.vertices(i, 2) = noise(rng) + 0.3 * std::sin(6.0 * sheet.vertices(i, 0));
-  if (GetParam().spike) sheet.vertices(40, 2) += 3.0;
+  if (GetParam().spike) sheet.vertices.row(40) += Vec3(2.0, 2.0, 3.0).transpose();  // > 64 cells
   TriangleMesh sphere = make_sphere(0.3, 1);
   sphere.vertices.col(0).array() += 0.5;
   sphere.vertices.col(1).array() += 0.5;
