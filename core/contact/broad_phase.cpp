@@ -92,14 +92,11 @@ class BoxGrid {
       if (cells > kDenseCellsPerEntry * listings) cells = 0;
     }
     if (cells > 0)
-      build_dense(hi, cells);
+      build_dense(hi, count, cells);
     else
-      build_hashed(hi, listings);
+      build_hashed(hi, count, listings);
   }
 
-  bool is_large(const Box& b) const {
-    return cell_count(cell_of(b.lo), cell_of(b.hi)) > kMaxCells;
-  }
   const std::vector<int>& large() const {
     return large_;
   }
@@ -113,10 +110,22 @@ class BoxGrid {
     return lo_[b];
   }
 
-  /// Calls visit(cell) for every cell the box overlaps.
+  /// Cells in the block lo..hi, capped at kMaxCells + 1 (more: a large box).
+  static long cell_count(const Cell& lo, const Cell& hi) {
+    long count = 1;
+    for (int a = 0; a < 3; ++a) {
+      count *= hi[a] - lo[a] + 1;
+      if (count > kMaxCells) return kMaxCells + 1;
+    }
+    return count;
+  }
+
+  /// Calls visit(cell) for every cell of the block lo..hi.
   template <class Visit>
-  void for_each_cell(const Box& b, Visit visit) const {
-    for_each_cell_of(cell_of(b.lo), cell_of(b.hi), visit);
+  static void for_each_cell_of(const Cell& lo, const Cell& hi, Visit visit) {
+    for (long i = lo[0]; i <= hi[0]; ++i)
+      for (long j = lo[1]; j <= hi[1]; ++j)
+        for (long k = lo[2]; k <= hi[2]; ++k) visit(Cell{i, j, k});
   }
 
   /// Calls visit(box) for every small box listed in `cell`, in increasing box order.
@@ -147,26 +156,6 @@ class BoxGrid {
     return static_cast<long>(std::clamp(std::floor(x * inverse_cell_), -1e15, 1e15));
   }
 
-  static long cell_count(const Cell& lo, const Cell& hi) {
-    long count = 1;
-    for (int a = 0; a < 3; ++a) {
-      count *= hi[a] - lo[a] + 1;
-      if (count > kMaxCells) return kMaxCells + 1;
-    }
-    return count;
-  }
-
-  template <class Visit>
-  static void for_each_cell_of(const Cell& lo, const Cell& hi, Visit visit) {
-    for (long i = lo[0]; i <= hi[0]; ++i)
-      for (long j = lo[1]; j <= hi[1]; ++j)
-        for (long k = lo[2]; k <= hi[2]; ++k) visit(Cell{i, j, k});
-  }
-
-  bool is_small(int b) const {
-    return !std::binary_search(large_.begin(), large_.end(), b);
-  }
-
   /// Row-major slot of a cell in the dense region, or −1 outside it.
   long dense_slot(const Cell& c) const {
     long slot = 0;
@@ -179,17 +168,18 @@ class BoxGrid {
   }
 
   /// Counting sort of the small boxes into their cells (box order kept within a cell).
-  void build_dense(const std::vector<Cell>& hi, long cells) {
+  /// count[b + 1]: cells of box b (the constructor's); boxes over kMaxCells are large.
+  void build_dense(const std::vector<Cell>& hi, const std::vector<long>& count, long cells) {
     const int n = static_cast<int>(lo_.size());
     dense_start_.assign(cells + 1, 0);
     for (int b = 0; b < n; ++b)
-      if (is_small(b))
+      if (count[b + 1] <= kMaxCells)
         for_each_cell_of(lo_[b], hi[b], [&](const Cell& c) { ++dense_start_[dense_slot(c) + 1]; });
     for (long c = 0; c < cells; ++c) dense_start_[c + 1] += dense_start_[c];
     dense_boxes_.resize(dense_start_[cells]);
     std::vector<long> cursor(dense_start_.begin(), dense_start_.end() - 1);
     for (int b = 0; b < n; ++b)
-      if (is_small(b))
+      if (count[b + 1] <= kMaxCells)
         for_each_cell_of(lo_[b], hi[b],
                          [&](const Cell& c) { dense_boxes_[cursor[dense_slot(c)]++] = b; });
   }
@@ -201,11 +191,11 @@ class BoxGrid {
            static_cast<Key>(c[2] & mask);
   }
 
-  void build_hashed(const std::vector<Cell>& hi, long listings) {
+  void build_hashed(const std::vector<Cell>& hi, const std::vector<long>& count, long listings) {
     const int n = static_cast<int>(lo_.size());
     hashed_.reserve(listings);
     for (int b = 0; b < n; ++b)
-      if (is_small(b))
+      if (count[b + 1] <= kMaxCells)
         for_each_cell_of(lo_[b], hi[b], [&](const Cell& c) { hashed_.push_back({hash(c), b}); });
     std::sort(hashed_.begin(), hashed_.end());
   }
@@ -246,13 +236,13 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& querie
         const int t = target_ids[k];
         if (accept(q, t) && overlap(box, listed[k])) local.push_back({q, t});
       };
-      if (grid.is_large(box)) {
+      const Cell query_lo = grid.cell_of(box.lo), query_hi = grid.cell_of(box.hi);
+      if (BoxGrid::cell_count(query_lo, query_hi) > BoxGrid::kMaxCells) {
         for (int k = 0; k < static_cast<int>(listed.size()); ++k) consider(k);
         continue;
       }
       for (int k : grid.large()) consider(k);
-      const Cell query_lo = grid.cell_of(box.lo);
-      grid.for_each_cell(box, [&](const Cell& c) {
+      BoxGrid::for_each_cell_of(query_lo, query_hi, [&](const Cell& c) {
         grid.for_each_in_cell(c, [&](int k) {
           const Cell& target_lo = grid.lower_cell(k);
           for (int a = 0; a < 3; ++a)

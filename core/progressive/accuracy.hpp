@@ -50,9 +50,9 @@ using AccuracyProgress = bool (*)(void* user, double fraction, const char* phase
 AccuracyReport run_accuracy(const Scene& scene, int max_settles = 500,
                             AccuracyProgress progress = nullptr, void* user = nullptr);
 
-/// Writes `accuracy.csv`, `accuracy.md` (table and speed-ups), `error_vs_time.png` and
-/// `error_by_level.png` and `time_by_level.png` into `dir` (created). Throws Error(io_error) naming a file that cannot
-/// be written.
+/// Writes `accuracy.csv`, `accuracy.md` (table and speed-ups), `error_vs_time.png`,
+/// `error_by_level.png` and `time_by_level.png` into `dir` (created). Throws Error(io_error)
+/// naming a file that cannot be written.
 void write_accuracy_report(const AccuracyReport& report, const std::string& dir);
 
 /// The CSV text: a header line, then one line per row.
