@@ -77,12 +77,30 @@ std::string check_ply_element_count(const std::string& path, std::istringstream&
                              " bytes can hold)");
 }
 
+/// Rejects a "property list COUNT ITEM NAME" line whose COUNT type is wider than 16 bits: CGAL
+/// resizes the list to whatever count the file gives before reading its items, so one face
+/// claiming 2^31 − 1 indices allocates 8 GB (found by the fuzz target). Writers use uchar.
+void check_ply_list_count_type(const std::string& path, std::istringstream& words) {
+  std::string count_type;
+  words >> count_type;
+  for (const char* narrow :
+       {"char", "uchar", "int8", "uint8", "short", "ushort", "int16", "uint16"})
+    if (count_type == narrow) return;
+  fail(Status::io_error, path +
+                             ": cannot parse the file as PLY (a list property counts its items "
+                             "with type '" +
+                             count_type + "'; progsim reads 8- or 16-bit counts, such as uchar)");
+}
+
 /// CGAL reads vertex coordinates assuming a float or double property and dereferences a null
 /// pointer for any other type (PLY_reader.h, found by the fuzz target): reject those first.
-void check_ply_coordinate_type(const std::string& path, const std::string& element,
-                               std::istringstream& words) {
+/// List properties are checked by check_ply_list_count_type.
+void check_ply_property(const std::string& path, const std::string& element,
+                        std::istringstream& words) {
   std::string type, name;
-  words >> type >> name;
+  words >> type;
+  if (type == "list") return check_ply_list_count_type(path, words);
+  words >> name;
   if (element != "vertex" || (name != "x" && name != "y" && name != "z")) return;
   if (type == "float" || type == "float32" || type == "double" || type == "float64") return;
   fail(Status::io_error, path + ": cannot parse the file as PLY (vertex property '" + name +
@@ -91,7 +109,7 @@ void check_ply_coordinate_type(const std::string& path, const std::string& eleme
 
 /// Checks a PLY header before CGAL reads it. CGAL dereferences the last element when it meets
 /// a "property" line, and crashes if no "element" line came before; element counts and
-/// coordinate types are checked by the functions above.
+/// property types are checked by the functions above.
 void check_ply_header(const std::string& path) {
   std::error_code size_error;
   const std::uintmax_t file_size = std::filesystem::file_size(path, size_error);
@@ -110,7 +128,7 @@ void check_ply_header(const std::string& path) {
       fail(Status::io_error, path +
                                  ": cannot parse the file as PLY (a property comes before "
                                  "any element in the header)");
-    if (keyword == "property") check_ply_coordinate_type(path, element, words);
+    if (keyword == "property") check_ply_property(path, element, words);
   }
 }
 

@@ -149,6 +149,10 @@ TEST_F(MeshIo, RejectsUnparsableFilesAsIoErrors) {
   // Found by the fuzz target: "element verertex -1." made CGAL loop over 2^64 − 1 items.
   expect_read_error("negative_element_count.ply", Status::io_error,
                     {"negative_element_count.ply: cannot parse", "element 'verertex'", "'-1.'"});
+  // Found by the fuzz target: a face list counted in int claiming 2^31 − 1 indices made CGAL
+  // allocate 8 GB before reading them.
+  expect_read_error("huge_list_count.ply", Status::io_error,
+                    {"huge_list_count.ply: cannot parse", "counts its items with type 'int'"});
 }
 
 TEST_F(MeshIo, LeavesGeometryAndManifoldnessToValidation) {
