@@ -82,6 +82,9 @@ double parameter(const Json& j, const char* group, const char* name, const std::
   return value;
 }
 
+/// The most quads a grid or cylinder generator may make (1e8 triangles, about 4 GB of mesh).
+constexpr long kMaxGeneratedQuads = 50'000'000;
+
 TriangleMesh generated_mesh(const Json& j, const std::string& where) {
   const std::string kind = j.at("generator").get<std::string>();
   if (kind == "grid") {
@@ -90,7 +93,7 @@ TriangleMesh generated_mesh(const Json& j, const std::string& where) {
     const int ny = integer(require(j, "ny", where), where + ".ny");
     const double w = number(require(j, "width", where), where + ".width");
     const double h = number(require(j, "height", where), where + ".height");
-    if (nx < 1 || ny < 1 || nx * static_cast<long>(ny) > 50'000'000)
+    if (nx < 1 || ny < 1 || nx * static_cast<long>(ny) > kMaxGeneratedQuads)
       scene_error(where, "nx and ny must be at least 1 and nx·ny at most 5e7");
     if (!(w > 0.0) || !(h > 0.0)) scene_error(where, "width and height must be positive");
     return make_grid(w, h, nx, ny);
@@ -111,10 +114,11 @@ TriangleMesh generated_mesh(const Json& j, const std::string& where) {
     const double deg = number_or(j, "angle_degrees", 360.0, where);
     const int na = integer(require(j, "n_around", where), where + ".n_around");
     const int nl = integer(require(j, "n_along", where), where + ".n_along");
-    if (!(r > 0.0) || !(len > 0.0) || !(deg > 0.0 && deg <= 360.0) || na < 3 || nl < 1)
-      scene_error(
-          where,
-          "need radius > 0, length > 0, angle_degrees in (0, 360], n_around ≥ 3, n_along ≥ 1");
+    if (!(r > 0.0) || !(len > 0.0) || !(deg > 0.0 && deg <= 360.0) || na < 3 || nl < 1 ||
+        na * static_cast<long>(nl) > kMaxGeneratedQuads)
+      scene_error(where,
+                  "need radius > 0, length > 0, angle_degrees in (0, 360], n_around ≥ 3, "
+                  "n_along ≥ 1 and n_around·n_along at most 5e7");
     return make_cylinder(r, len, deg * kPi / 180.0, na, nl);
   }
   if (kind == "box") {

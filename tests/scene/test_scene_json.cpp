@@ -88,6 +88,16 @@ TEST(SceneJson, RejectsMissingFields) {
                      "missing required field 'nx'");
 }
 
+TEST(SceneJson, RejectsGeneratedMeshesTooLargeToBuild) {
+  const std::string grid =
+      R"({"generator": "grid", "width": 1, "height": 1, "nx": 8000, "ny": 8000})";
+  expect_scene_error(scene_text("", "", R"(["membrane"])", grid), "nx·ny at most 5e7");
+  const std::string cylinder = R"({"generator": "cylinder", "radius": 1, "length": 1,
+                                   "n_around": 100000, "n_along": 100000})";
+  expect_scene_error(scene_text("", "", R"(["membrane"])", cylinder),
+                     "n_around·n_along at most 5e7");
+}
+
 TEST(SceneJson, RejectsOutOfRangeMaterials) {
   expect_scene_error(scene_text(R"(, "material": {"thickness": -0.001})"),
                      "bodies[0].material.thickness");
