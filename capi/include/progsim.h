@@ -164,7 +164,10 @@ PS_API int32_t ps_hierarchy_create(const ps_hierarchy_def* def, const double* ve
                                    size_t num_vertices, const int32_t* faces, size_t num_faces,
                                    ps_hierarchy** out);
 
-/** As ps_hierarchy_create(), reading the mesh from an OBJ, OFF or PLY file at `path`. */
+/** As ps_hierarchy_create(), reading the mesh from an OBJ, OFF or PLY file at `path`
+ *  (format from the extension; triangles only). A file that cannot be read or parsed gives
+ *  PS_ERROR_IO, including PLY files with non-float coordinates or list counts wider than
+ *  16 bits; non-triangle faces or out-of-range indices give PS_ERROR_INVALID_MESH. */
 PS_API int32_t ps_hierarchy_create_from_file(const ps_hierarchy_def* def, const char* path,
                                              ps_hierarchy** out);
 

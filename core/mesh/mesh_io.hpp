@@ -14,6 +14,8 @@ namespace progsim {
 /// Error(Status::invalid_mesh) if it holds non-triangle faces or out-of-range indices.
 /// Messages start with the path and name the face. OBJ and OFF "nan"/"inf" coordinates are
 /// read (and left to validate_mesh); in PLY (CGAL's parser) they are parse errors (io_error).
+/// PLY coordinates must be float or double, and list properties must count their items in
+/// 8 or 16 bits (uchar, as writers use; wider counts are an io_error).
 TriangleMesh read_mesh(const std::string& path);
 
 /// Writes a mesh to .obj, .off or .ply (format from the extension): text with 17 significant
