@@ -13,13 +13,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "progressive/accuracy.hpp"
-#include "scene/scene_json.hpp"
+#include "scaled_scene.hpp"
 
 using namespace progsim;
 
@@ -28,23 +26,7 @@ namespace {
 /// The scene file with its mesh's cell counts multiplied by `factor` and the given preview
 /// Hessian.
 Scene scaled(const std::string& path, double factor, ProxyHessian hessian) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  std::string json = text.str();
-  const std::regex count("\"(nx|ny|n_around|n_along)\": *([0-9]+)");
-  std::string out;
-  std::sregex_iterator it(json.begin(), json.end(), count), end;
-  std::size_t last = 0;
-  for (; it != end; ++it) {
-    const std::smatch& m = *it;
-    const long cells = std::lround(std::stod(m[2].str()) * factor);
-    out += json.substr(last, m.position(0) - last) + "\"" + m[1].str() +
-           "\": " + std::to_string(cells);
-    last = m.position(0) + m.length(0);
-  }
-  out += json.substr(last);
-  Scene scene = parse_scene(out, path.substr(0, path.find_last_of('/') + 1));
+  Scene scene = scaled_scene(path, factor);
   scene.progressive.hessian = hessian;
   return scene;
 }

@@ -37,6 +37,10 @@ class EnergyTerm {
   /// semi-definite matrix (per-element eigenvalue clamp, projected Newton).
   virtual void hessian_values(const Vector& x, bool project_psd, double* values) const = 0;
 
+  /// False when hessian_values() is a stand-in, not ∇²E_k (the PSQ proxy's level or
+  /// Galerkin Hessian): the Newton solver then does not refine its steps against it.
+  virtual bool hessian_is_exact() const { return true; }
+
   /// False for terms whose stencils change with x (contact, friction): the Problem then asks
   /// for their triplets at every Hessian evaluation instead of using a fixed pattern, and
   /// such terms report hessian_entry_count() = 0.

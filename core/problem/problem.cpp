@@ -130,6 +130,11 @@ void Problem::gradient(const Vector& x, Vector& g) {
     if (fixed_[d]) g[d] = 0.0;
 }
 
+bool Problem::hessian_is_exact() const {
+  return std::all_of(terms_.begin(), terms_.end(),
+                     [](const auto& term) { return term->hessian_is_exact(); });
+}
+
 const Problem::SparseMatrix& Problem::hessian(const Vector& x, bool project_psd) {
   if (!finalized_) fail(Status::wrong_call_order, "Problem: hessian before finalize");
   for (std::size_t t = 0; t < terms_.size(); ++t) {

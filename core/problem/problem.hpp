@@ -50,6 +50,9 @@ class Problem {
   /// finalize(); with them (contact) the pattern may change: see pattern_version().
   const SparseMatrix& hessian(const Vector& x, bool project_psd);
 
+  /// True when every term's hessian_values() is its exact Hessian (EnergyTerm::hessian_is_exact).
+  bool hessian_is_exact() const;
+
   /// Changes whenever the pattern of the matrix hessian() returns changed (so a solver knows
   /// when to redo its symbolic analysis).
   long pattern_version() const { return pattern_version_; }

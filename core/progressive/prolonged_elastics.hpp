@@ -36,6 +36,7 @@ class ProlongedElastics final : public EnergyTerm {
                     const Positions& finest_rest);
 
   const char* name() const override { return "prolonged_elastics"; }
+  bool hessian_is_exact() const override { return false; }
   double value(const Vector& x) const override;
   void add_gradient(const Vector& x, Vector& g) const override;
   std::size_t hessian_entry_count() const override;

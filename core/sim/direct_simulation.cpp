@@ -32,6 +32,7 @@ constexpr double kStalledScriptStep = 1e-3;
 void accumulate(NewtonReport& total, const NewtonReport& part) {
   const int iterations = total.iterations + part.iterations;
   const int exact = total.exact_steps + part.exact_steps;
+  const int cg = total.cg_iterations + part.cg_iterations;
   const double shift = std::max(total.max_shift, part.max_shift);
   NewtonTimings timings = total.timings;
   timings.assembly += part.timings.assembly;
@@ -41,6 +42,7 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
   total = part;
   total.iterations = iterations;
   total.exact_steps = exact;
+  total.cg_iterations = cg;
   total.max_shift = shift;
   total.timings = timings;
 }

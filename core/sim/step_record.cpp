@@ -24,6 +24,7 @@ std::string to_json_line(const StepRecord& r) {
                          {"step_norm", n.step_norm},
                          {"max_diagonal_shift", n.max_shift},
                          {"exact_hessian_iterations", n.exact_steps},
+                         {"cg_iterations", n.cg_iterations},
                          {"phase_seconds",
                           {{"assembly", n.timings.assembly},
                            {"factorization", n.timings.factorization},

@@ -1,0 +1,83 @@
+// What refining projected Newton steps against the exact Hessian buys (truncated_newton.hpp):
+// a bundled scene solved directly over its whole load script, once with projected steps as
+// they are (max_cg_iterations = 0, the default) and once CG-refined (at most 50 CG
+// iterations per Newton iteration), in one run per size. Prints a table, writes CSV.
+//
+// usage: bench_newton_refinement [scene.json] [csv_path] [factor ...]
+//        scene: a bundled scene with a generated grid or cylinder mesh (default
+//        scenes/psq_twist.json, solved directly on its finest mesh); factor: each run
+//        multiplies the mesh's cell counts by it (default 1 2).
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "common/timer.hpp"
+#include "scaled_scene.hpp"
+#include "sim/direct_simulation.hpp"
+
+using namespace progsim;
+
+namespace {
+
+/// CG iterations per refined step (NewtonSettings::max_cg_iterations).
+constexpr int kRefinedCgIterations = 50;
+
+/// One direct run over the scene's load script.
+struct Run {
+  int iterations = 0, cg_iterations = 0, converged_steps = 0;
+  double seconds = 0.0, energy = 0.0;
+};
+
+Run solve_directly(Scene scene, int max_cg_iterations) {
+  scene.progressive = ProgressiveSettings{};
+  scene.solver.max_cg_iterations = max_cg_iterations;
+  Run run;
+  Timer timer;
+  DirectSimulation sim(scene);
+  for (int s = 0; s < scene.num_steps(); ++s) {
+    const StepRecord r = sim.step();
+    run.iterations += r.newton.iterations;
+    run.cg_iterations += r.newton.cg_iterations;
+    run.converged_steps += r.newton.stop == NewtonStop::converged;
+    run.energy = r.newton.energy;
+  }
+  run.seconds = timer.seconds();
+  return run;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string scene_path = argc > 1 ? argv[1] : PROGSIM_SOURCE_DIR "/scenes/psq_twist.json";
+  const std::string csv_path = argc > 2 ? argv[2] : "newton_refinement.csv";
+  std::vector<double> factors;
+  for (int k = 3; k < argc; ++k) factors.push_back(std::stod(argv[k]));
+  if (factors.empty()) factors = {1.0, 2.0};
+  std::ofstream csv(csv_path);
+  csv << "scene,vertices,steps,method,newton_iterations,cg_iterations,converged_steps,seconds,"
+         "final_energy,seconds_over_refined\n";
+  std::printf("%9s %6s %10s %8s %8s %10s %9s %12s %8s\n", "vertices", "steps", "method", "Newton",
+              "CG", "converged", "seconds", "energy (J)", "time×");
+  for (double factor : factors) {
+    const Scene scene = scaled_scene(scene_path, factor);
+    const int vertices = scene.bodies[0].mesh.num_vertices();
+    std::fprintf(stderr, "%s, cells ×%g: projected steps\n", scene.name.c_str(), factor);
+    const Run projected = solve_directly(scene, 0);
+    std::fprintf(stderr, "%s, cells ×%g: CG-refined steps\n", scene.name.c_str(), factor);
+    const Run refined = solve_directly(scene, kRefinedCgIterations);
+    for (const auto& [name, run] : {std::pair<const char*, const Run&>{"projected", projected},
+                                    std::pair<const char*, const Run&>{"refined", refined}}) {
+      const double ratio = run.seconds / refined.seconds;
+      std::printf("%9d %6d %10s %8d %8d %10d %9.3g %12.6g %8.2f\n", vertices, scene.num_steps(),
+                  name, run.iterations, run.cg_iterations, run.converged_steps, run.seconds,
+                  run.energy, ratio);
+      csv << scene.name << ',' << vertices << ',' << scene.num_steps() << ',' << name << ','
+          << run.iterations << ',' << run.cg_iterations << ',' << run.converged_steps << ','
+          << run.seconds << ',' << run.energy << ',' << ratio << '\n';
+    }
+    std::fflush(stdout);
+  }
+  std::printf("CSV: %s\n", csv_path.c_str());
+  return 0;
+}
