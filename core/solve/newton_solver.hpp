@@ -15,14 +15,13 @@ enum class HessianProjection {
   /// The exact Hessian whenever CHOLMOD factorizes it without a shift (then it is positive
   /// definite and gives a true Newton step), else the projected one. With max_cg_iterations
   /// > 0, a projected step is then refined by CG against the exact Hessian when the
-  /// problem's Hessian is exact
-  /// (truncated_newton.hpp): it follows the curvature projection discarded, e.g. of folds and
-  /// twists, stops at negative curvature, and stays in a trust region that starts at four
-  /// times the projected step's length and doubles while refined steps are taken whole (it
-  /// shrinks to what the line search took otherwise). After a failed exact attempt, the
-  /// exact Hessian is tried again only once a full step (α = 1) was accepted, and not at all
-  /// after three failures in one solve; after three failed attempts in a row (across solves,
-  /// e.g. every step of a hanging cloth) only every 8th solve tries.
+  /// problem's Hessian is exact (truncated_newton.hpp): it follows the curvature projection
+  /// discarded, e.g. of folds and twists, stops at negative curvature, and stays in a trust
+  /// region that starts at four times the projected step's length and doubles while refined
+  /// steps are taken whole (it shrinks to what the line search took otherwise). After a
+  /// failed exact attempt, the exact Hessian is tried again only once a full step (α = 1) was
+  /// accepted, and not at all after three failures in one solve; after three failed attempts
+  /// in a row (across solves, e.g. every step of a hanging cloth) only every 8th solve tries.
   /// Projection discards the geometric stiffness of bent hinges; near a bent equilibrium
   /// (stiff thin strips) exact steps converge in far fewer iterations (Longva et al. 2023).
   adaptive,

@@ -76,17 +76,22 @@ TEST(PsqScenes, TwistIsIntersectionFreeOnEveryLevel) {
   expect_safe_and_converged(report);
 }
 
-/// Newton iterations and converged steps of the scene solved directly over `steps` steps.
-static std::pair<int, int> direct_iterations(const Scene& scene, int steps, int* cg_iterations) {
+/// What the Newton solves of a direct run did over its steps.
+struct DirectRun {
+  int iterations = 0, cg_iterations = 0, converged_steps = 0;
+};
+
+/// The scene solved directly over its first `steps` steps.
+static DirectRun solve_directly(const Scene& scene, int steps) {
   DirectSimulation sim(scene);
-  int iterations = 0, converged = 0;
+  DirectRun run;
   for (int s = 0; s < steps; ++s) {
     const StepRecord r = sim.step();
-    iterations += r.newton.iterations;
-    *cg_iterations += r.newton.cg_iterations;
-    converged += r.newton.stop == NewtonStop::converged;
+    run.iterations += r.newton.iterations;
+    run.cg_iterations += r.newton.cg_iterations;
+    run.converged_steps += r.newton.stop == NewtonStop::converged;
   }
-  return {iterations, converged};
+  return run;
 }
 
 TEST(PsqScenes, TwistConvergesInFewerIterationsWhenProjectedStepsFollowTheExactCurvature) {
@@ -96,17 +101,17 @@ TEST(PsqScenes, TwistConvergesInFewerIterationsWhenProjectedStepsFollowTheExactC
   Scene scene = bundled("psq_twist.json", {{R"("nx": 32, "ny": 32)", R"("nx": 16, "ny": 16)"}});
   scene.progressive = ProgressiveSettings{};
   const int steps = 6;
-  int cg = 0, no_cg = 0;
   ASSERT_EQ(scene.solver.max_cg_iterations, 0);  // opt-in
-  const auto [projected, projected_converged] = direct_iterations(scene, steps, &no_cg);
+  const DirectRun projected = solve_directly(scene, steps);
   scene.solver.max_cg_iterations = 50;
-  const auto [refined, refined_converged] = direct_iterations(scene, steps, &cg);
-  std::cout << "[ twist ] Newton iterations over " << steps << " steps: projected " << projected
-            << ", CG-refined " << refined << " (" << cg << " CG iterations)" << std::endl;
-  EXPECT_EQ(no_cg, 0);
-  EXPECT_GT(cg, 0);
-  EXPECT_EQ(refined_converged, steps);
-  EXPECT_LT(refined, 0.85 * projected);
+  const DirectRun refined = solve_directly(scene, steps);
+  std::cout << "[ twist ] Newton iterations over " << steps << " steps: projected "
+            << projected.iterations << ", CG-refined " << refined.iterations << " ("
+            << refined.cg_iterations << " CG iterations)" << std::endl;
+  EXPECT_EQ(projected.cg_iterations, 0);
+  EXPECT_GT(refined.cg_iterations, 0);
+  EXPECT_EQ(refined.converged_steps, steps);
+  EXPECT_LT(refined.iterations, 0.85 * projected.iterations);
 }
 
 TEST(PsqScenes, BalloonInflatedAgainstAPlateIsIntersectionFreeOnEveryLevel) {
