@@ -30,8 +30,9 @@ echo "== AddressSanitizer + UBSan build (clang): C++ and C tests, then libFuzzer
 CC=clang-14 CXX=clang++-14 scripts/build.sh asan -DPROGSIM_SANITIZE=ON -DPROGSIM_FUZZ=ON \
   -DPROGSIM_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
 # The long contact scenes (90-step drapes, the two-turn twist, the spinning sphere, one step of
-# every bundled scene, the PSQ scenes' full progressive and direct runs) take 2-8 min each under
-# the sanitizers; they run in the release build above. Under the sanitizers the same contact
+# every bundled scene, the PSQ scenes' full progressive and direct runs) take 1-7 min each under
+# the sanitizers (Eigen's small fixed-size products run 15-30x slower there); they run in the
+# release build above. Under the sanitizers the same contact
 # code runs through its unit tests (barrier, friction, CCD, broad phase, distances, safe
 # refinement) and the short scenes (incline, strain limit, bad input).
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
