@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 6
+#define PS_VERSION_MINOR 7
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -267,10 +267,12 @@ typedef struct ps_sim_def {
   double contact_friction_velocity;     /**< m/s, (0, 1e3]; default 1e-3 */
   double solver_newton_tolerance;       /**< 1, (0, 1]; default 1e-5 */
   int32_t solver_max_newton_iterations; /**< ≥ 1; default 100 */
-  ps_mode mode;                         /**< default PS_MODE_DYNAMIC */
-  uint32_t effects;                     /**< ps_effect bits; default membrane|bending|gravity */
-  double gravity[3];                    /**< m/s²; default (0, −9.81, 0) */
-  double pressure;                      /**< Pa, needs PS_EFFECT_PRESSURE; default 0 */
+  /** ≥ 0; default 0 (off): CG refinement of projected Newton steps (`progsim params`) */
+  int32_t solver_max_cg_iterations;
+  ps_mode mode;      /**< default PS_MODE_DYNAMIC */
+  uint32_t effects;  /**< ps_effect bits; default membrane|bending|gravity */
+  double gravity[3]; /**< m/s²; default (0, −9.81, 0) */
+  double pressure;   /**< Pa, needs PS_EFFECT_PRESSURE; default 0 */
   /** Finest-level vertices held still (handle 0). Nullable; borrowed during create. */
   const int32_t* pinned_vertices;
   size_t num_pinned_vertices; /**< entries in pinned_vertices; default 0 */
@@ -479,6 +481,9 @@ typedef struct ps_level_stats {
   int32_t obstacle_vertices;
   /** How the progressive obstacles were refined into this level (PSQ §4.6; zeros without). */
   ps_refinement_stats obstacle_refinement;
+  /** CG iterations refining projected Newton steps (ps_sim_def::solver_max_cg_iterations > 0;
+   *  never in the coarse levels' proxy solves); 0 when refinement is off. */
+  int32_t cg_iterations;
 } ps_level_stats;
 
 /** Statistics of `level` into *out. Levels not visited yet report zeros (NaN errors). */

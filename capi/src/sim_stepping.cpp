@@ -136,6 +136,7 @@ PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level
     stats.raised_limits = r.raised_limits;
     stats.obstacle_vertices = r.obstacle_vertices;
     stats.obstacle_refinement = refinement_stats(r.obstacle_refinement);
+    stats.cg_iterations = r.cg_iterations;
     *out = stats;
   });
 }

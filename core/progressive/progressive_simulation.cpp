@@ -117,6 +117,7 @@ void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
   LevelRecord& r = records_[level_];
   (new_step ? r.steps : r.settles) += 1;
   r.newton_iterations += step.newton.iterations;
+  r.cg_iterations += step.newton.cg_iterations;
   r.converged_solves += step.newton.stop == NewtonStop::converged;
   r.solve_seconds += step.seconds;
   r.energy = step.newton.energy;

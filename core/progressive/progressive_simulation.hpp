@@ -21,6 +21,7 @@ struct LevelRecord {
   int steps = 0;                ///< preview (or finest) steps taken on the level
   int settles = 0;              ///< solves at a fixed time (after refinement, to equilibrium)
   int newton_iterations = 0;    ///< over steps and settles
+  int cg_iterations = 0;        ///< refining projected steps (NewtonSettings::max_cg_iterations)
   int converged_solves = 0;     ///< steps and settles whose Newton solve met the tolerance
   double solve_seconds = 0.0;   ///< wall time of the level's steps and settles
   double refine_seconds = 0.0;  ///< wall time to build the level's start from the coarser one

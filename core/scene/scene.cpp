@@ -106,6 +106,7 @@ void validate_scene(const Scene& scene) {
   check("simulation", "output_every", scene.output_every);
   check("solver", "newton_tolerance", scene.solver.tolerance);
   check("solver", "max_newton_iterations", scene.solver.max_iterations);
+  check("solver", "max_cg_iterations", scene.solver.max_cg_iterations);
   if (!scene.gravity.allFinite()) fail(Status::invalid_scene, "gravity has a non-finite component");
   if (scene.bodies.empty()) fail(Status::invalid_scene, "the scene has no bodies");
   for (const Body& body : scene.bodies) {

@@ -300,10 +300,12 @@ void simulation(const Json& j, Scene& scene) {
 }
 
 void solver(const Json& j, Scene& scene) {
-  expect_keys(j, "solver", {"newton_tolerance", "max_newton_iterations"});
+  expect_keys(j, "solver", {"newton_tolerance", "max_newton_iterations", "max_cg_iterations"});
   scene.solver.tolerance = parameter(j, "solver", "newton_tolerance", "solver");
   scene.solver.max_iterations =
       static_cast<int>(parameter(j, "solver", "max_newton_iterations", "solver"));
+  scene.solver.max_cg_iterations =
+      static_cast<int>(parameter(j, "solver", "max_cg_iterations", "solver"));
 }
 
 /// The "progressive" section: {"coarse_levels": k, "coarsening_ratio": r} or {"levels": [...]}

@@ -54,10 +54,32 @@ const std::vector<Accessor>& accessors() {
   return table;
 }
 
+/// The integer parameters: one slot each.
+struct IntegerAccessor {
+  const char* name;
+  int& (*slot)(Scene&);
+};
+
+const std::vector<IntegerAccessor>& integer_accessors() {
+  static const std::vector<IntegerAccessor> table = {
+      {"simulation.output_every", [](Scene& s) -> int& { return s.output_every; }},
+      {"solver.max_newton_iterations", [](Scene& s) -> int& { return s.solver.max_iterations; }},
+      {"solver.max_cg_iterations", [](Scene& s) -> int& { return s.solver.max_cg_iterations; }},
+  };
+  return table;
+}
+
+const IntegerAccessor* integer_accessor(const std::string& name) {
+  for (const IntegerAccessor& a : integer_accessors())
+    if (name == a.name) return &a;
+  return nullptr;
+}
+
 std::string known_names() {
   std::string names;
   for (const Accessor& a : accessors()) names += std::string(names.empty() ? "" : ", ") + a.name;
-  return names + ", simulation.output_every, solver.max_newton_iterations";
+  for (const IntegerAccessor& a : integer_accessors()) names += std::string(", ") + a.name;
+  return names;
 }
 
 [[noreturn]] void unknown(const std::string& name) {
@@ -87,11 +109,9 @@ void check_value(const std::string& name, double value) {
 }  // namespace
 
 void set_scene_parameter(Scene& scene, const std::string& name, double value) {
-  if (name == "simulation.output_every" || name == "solver.max_newton_iterations") {
+  if (const IntegerAccessor* a = integer_accessor(name)) {
     check_value(name, value);
-    int& slot =
-        name == "simulation.output_every" ? scene.output_every : scene.solver.max_iterations;
-    slot = static_cast<int>(value);
+    a->slot(scene) = static_cast<int>(value);
     return;
   }
   for (const Accessor& a : accessors())
@@ -104,9 +124,8 @@ void set_scene_parameter(Scene& scene, const std::string& name, double value) {
 }
 
 double scene_parameter(const Scene& scene, const std::string& name) {
-  if (name == "simulation.output_every") return scene.output_every;
-  if (name == "solver.max_newton_iterations") return scene.solver.max_iterations;
   Scene& mutable_scene = const_cast<Scene&>(scene);  // slots are only read below
+  if (const IntegerAccessor* a = integer_accessor(name)) return a->slot(mutable_scene);
   for (const Accessor& a : accessors())
     if (name == a.name) {
       const std::vector<double*> slots = a.slots(mutable_scene);

@@ -198,6 +198,11 @@ static void test_misuse(void) {
   CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_INVALID_ARGUMENT, ps_last_error(),
               "material.poisson_ratio");
   ps_sim_def_init(&def);
+  CHECK(def.solver_max_cg_iterations == 0); /* CG refinement is opt-in */
+  def.solver_max_cg_iterations = -1;
+  CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_INVALID_ARGUMENT, ps_last_error(),
+              "solver.max_cg_iterations");
+  ps_sim_def_init(&def);
   const int32_t out_of_range[1] = {99};
   def.pinned_vertices = out_of_range;
   def.num_pinned_vertices = 1;
@@ -449,6 +454,39 @@ static void test_progressive(void) {
   ps_hierarchy_destroy(h);
 }
 
+/* On a two-level scene: `steps` preview steps, equilibrium on the coarse level, refinement,
+ * equilibrium on the finest; the two levels' statistics into *coarse and *fine. */
+static void preview_then_refine_once(ps_sim* sim, int32_t steps, ps_level_stats* coarse,
+                                     ps_level_stats* fine) {
+  int32_t equilibrium = 0;
+  CHECK(ps_sim_step_preview(sim, steps) == PS_OK);
+  CHECK(ps_sim_settle(sim, 300, &equilibrium) == PS_OK && equilibrium == 1);
+  CHECK(ps_sim_refine(sim) == PS_OK);
+  CHECK(ps_sim_settle(sim, 300, &equilibrium) == PS_OK && equilibrium == 1);
+  CHECK(ps_sim_get_level_stats(sim, 0, coarse) == PS_OK);
+  CHECK(ps_sim_get_level_stats(sim, 1, fine) == PS_OK);
+}
+
+/* solver.max_cg_iterations through the ABI: read from the scene's solver section, checked by
+ * ps_sim_set_param, and counted per level: never in the coarse level's proxy solves (their
+ * Hessian only preconditions), on the finest level where the wrung cloth's Hessian is
+ * indefinite. */
+static void test_cg_refinement(void) {
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create_from_scene_file(path_in_source("tests/data/twist_cg_refined.json"), &sim) ==
+        PS_OK);
+  if (!sim) return;
+  double value = 0.0;
+  CHECK(ps_sim_get_param(sim, "solver.max_cg_iterations", &value) == PS_OK && value == 50.0);
+  CHECK_ERROR(ps_sim_set_param(sim, "solver.max_cg_iterations", 2.5), PS_ERROR_INVALID_ARGUMENT,
+              ps_sim_last_error(sim), "solver.max_cg_iterations");
+  ps_level_stats coarse, fine;
+  preview_then_refine_once(sim, 6, &coarse, &fine);
+  CHECK(coarse.newton_iterations > 0 && coarse.cg_iterations == 0);
+  CHECK(fine.newton_iterations > 0 && fine.cg_iterations > 0);
+  ps_sim_destroy(sim);
+}
+
 /* The accuracy-vs-time numbers through the ABI, on the bundled plate-buckling scene. */
 static void test_accuracy(void) {
   ps_accuracy* accuracy = NULL;
@@ -490,14 +528,8 @@ static void test_progressive_obstacle(void) {
   CHECK(ps_sim_create_from_scene_file(path_in_source("tests/data/progressive_obstacle.json"),
                                       &sim) == PS_OK);
   if (!sim) return;
-  int32_t equilibrium = 0;
-  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
-  CHECK(ps_sim_settle(sim, 300, &equilibrium) == PS_OK && equilibrium == 1);
-  CHECK(ps_sim_refine(sim) == PS_OK);
-  CHECK(ps_sim_settle(sim, 300, &equilibrium) == PS_OK && equilibrium == 1);
   ps_level_stats coarse, fine;
-  CHECK(ps_sim_get_level_stats(sim, 0, &coarse) == PS_OK);
-  CHECK(ps_sim_get_level_stats(sim, 1, &fine) == PS_OK);
+  preview_then_refine_once(sim, 1, &coarse, &fine);
   CHECK(fine.obstacle_vertices == 162); /* the sphere's own vertices */
   CHECK(coarse.obstacle_vertices > 0 && coarse.obstacle_vertices < fine.obstacle_vertices);
   CHECK(coarse.obstacle_refinement.splits == 0);
@@ -520,6 +552,7 @@ int main(int argc, char** argv) {
   test_levels();
   test_progressive();
   test_progressive_obstacle();
+  test_cg_refinement();
   test_accuracy();
   if (failures)
     fprintf(stderr, "%d checks failed\n", failures);

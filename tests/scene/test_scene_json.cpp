@@ -70,6 +70,18 @@ TEST(SceneJson, ReadsMaterialsHandlesAndDefaults) {
   EXPECT_EQ(s.time_step, find_parameter("simulation", "time_step").default_value);
 }
 
+TEST(SceneJson, ReadsTheSolverSection) {
+  const Scene defaults = parse_scene(scene_text(), ".");
+  EXPECT_EQ(defaults.solver.max_cg_iterations, 0);  // CG refinement is opt-in
+  const Scene s = parse_scene(
+      scene_text("", R"(, "solver": {"max_newton_iterations": 40, "max_cg_iterations": 25})"), ".");
+  EXPECT_EQ(s.solver.max_iterations, 40);
+  EXPECT_EQ(s.solver.max_cg_iterations, 25);
+  expect_scene_error(scene_text("", R"(, "solver": {"max_cg_iterations": -1})"),
+                     "solver.max_cg_iterations");
+  expect_scene_error(scene_text("", R"(, "solver": {"max_cg_iterations": 1.5})"), "whole number");
+}
+
 TEST(SceneJson, ShellMaterialDefaultsAgreeWithTheParameterTable) {
   const ShellMaterial m;
   EXPECT_EQ(m.youngs_modulus, find_parameter("material", "youngs_modulus").default_value);

@@ -90,6 +90,24 @@ def test_progressive_obstacle_statistics():
         assert 0.0 < fine.obstacle_refinement.reached <= 1.0
 
 
+def test_cg_refinement_counts_only_on_the_finest_level(hanging):
+    """solver.max_cg_iterations from a scene: the coarse proxy never refines, the wrung finest
+    level does."""
+    scene = Path(__file__).resolve().parents[3] / "tests" / "data" / "twist_cg_refined.json"
+    with progsim.Simulation.from_scene_file(scene) as sim:
+        assert sim.get_param("solver.max_cg_iterations") == 50
+        sim.step_preview(6)
+        assert sim.settle(300)
+        sim.refine()
+        assert sim.settle(300)
+        coarse, fine = sim.level_stats(0), sim.level_stats(1)
+        assert coarse.newton_iterations > 0 and coarse.cg_iterations == 0
+        assert fine.newton_iterations > 0 and fine.cg_iterations > 0
+    assert hanging.get_param("solver.max_cg_iterations") == 0  # opt-in
+    with pytest.raises(progsim.InvalidArgumentError, match="max_cg_iterations"):
+        progsim.Simulation(hanging.hierarchy, max_cg_iterations=-1)
+
+
 def test_pins_must_be_the_hierarchys(hanging):
     with pytest.raises(progsim.InvalidArgumentError, match="pinned_vertices"):
         progsim.Simulation(

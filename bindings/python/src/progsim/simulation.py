@@ -133,6 +133,9 @@ class LevelStats:
     #: obstacles, PSQ §4.6)
     obstacle_vertices: int
     obstacle_refinement: RefinementStats  #: how the progressive obstacles were refined into it
+    #: CG iterations refining projected Newton steps (``max_cg_iterations`` > 0; never in the
+    #: coarse levels' proxy solves)
+    cg_iterations: int
 
 
 def _effect_bit(name: str) -> int:
@@ -198,6 +201,7 @@ class Simulation(NativeObject):
         density: Optional[float] = None,
         newton_tolerance: Optional[float] = None,
         max_newton_iterations: Optional[int] = None,
+        max_cg_iterations: Optional[int] = None,
         mode: str = "dynamic",
         effects: Optional[Iterable[str]] = None,
         gravity: Optional[Sequence[float]] = None,
@@ -220,6 +224,9 @@ class Simulation(NativeObject):
             density: kg/m³, in (0, 1e6]; default 200.
             newton_tolerance: dimensionless, in (0, 1]; default 1e-5.
             max_newton_iterations: >= 1; default 100.
+            max_cg_iterations: >= 0; default 0 (off). CG iterations refining each projected
+                Newton step against the exact Hessian (faster on soft twisting cloth, slower on
+                stiff shells; see ``bench_newton_refinement``).
             mode: ``"dynamic"`` (implicit Euler) or ``"quasistatic"`` (energy minimisation
                 per load step).
             effects: names among ``membrane``, ``bending``, ``gravity``, ``pressure``,
@@ -250,6 +257,7 @@ class Simulation(NativeObject):
             "density": density,
             "newton_tolerance": newton_tolerance,
             "max_newton_iterations": max_newton_iterations,
+            "max_cg_iterations": max_cg_iterations,
         }
         for keyword, value in values.items():
             if value is None:
@@ -655,6 +663,7 @@ class Simulation(NativeObject):
             raised_limits=int(out.raised_limits),
             obstacle_vertices=int(out.obstacle_vertices),
             obstacle_refinement=RefinementStats._from_native(out.obstacle_refinement),
+            cg_iterations=int(out.cg_iterations),
         )
 
     def __repr__(self) -> str:

@@ -270,6 +270,10 @@ pub struct SimulationDef {
     /// (`solver.max_newton_iterations`). Hitting it is reported in [`LevelStats`], not an
     /// error.
     pub max_newton_iterations: i32,
+    /// CG iterations refining each projected Newton step against the exact Hessian, ≥ 0;
+    /// default 0 = off (`solver.max_cg_iterations`). Faster on soft twisting cloth, slower
+    /// on stiff shells; never used in the coarse levels' proxy solves.
+    pub max_cg_iterations: i32,
     /// How steps advance; default [`Mode::Dynamic`].
     pub mode: Mode,
     /// Enabled effects; default membrane, bending and gravity.
@@ -311,6 +315,7 @@ impl Default for SimulationDef {
             contact_friction_velocity: raw.contact_friction_velocity,
             newton_tolerance: raw.solver_newton_tolerance,
             max_newton_iterations: raw.solver_max_newton_iterations,
+            max_cg_iterations: raw.solver_max_cg_iterations,
             mode: Mode::from_raw(raw.mode).unwrap_or_default(),
             effects: Effects::from_bits_retain(raw.effects),
             gravity: raw.gravity,
@@ -341,6 +346,7 @@ impl SimulationDef {
         raw.contact_friction_velocity = self.contact_friction_velocity;
         raw.solver_newton_tolerance = self.newton_tolerance;
         raw.solver_max_newton_iterations = self.max_newton_iterations;
+        raw.solver_max_cg_iterations = self.max_cg_iterations;
         raw.mode = self.mode.to_raw();
         raw.effects = self.effects.bits();
         raw.gravity = self.gravity;
@@ -427,6 +433,9 @@ pub struct LevelStats {
     pub obstacle_vertices: usize,
     /// How the progressive obstacles were refined into this level (zeros without).
     pub obstacle_refinement: RefinementStats,
+    /// CG iterations refining projected Newton steps ([`SimulationDef::max_cg_iterations`]
+    /// > 0; never in the coarse levels' proxy solves); 0 when refinement is off.
+    pub cg_iterations: usize,
 }
 
 /// How a level's start was built from the coarser level by safe refinement (PSQ §4.4); all
@@ -494,6 +503,7 @@ impl From<sys::ps_level_stats> for LevelStats {
             raised_limits: crate::count_from(raw.raised_limits),
             obstacle_vertices: crate::count_from(raw.obstacle_vertices),
             obstacle_refinement: RefinementStats::from(raw.obstacle_refinement),
+            cg_iterations: crate::count_from(raw.cg_iterations),
         }
     }
 }
@@ -512,6 +522,7 @@ mod tests {
         assert_eq!(def.density, 200.0);
         assert_eq!(def.newton_tolerance, 1e-5);
         assert_eq!(def.max_newton_iterations, 100);
+        assert_eq!(def.max_cg_iterations, 0);
         assert_eq!(def.mode, Mode::Dynamic);
         assert_eq!(def.effects, Effect::Membrane | Effect::Bending | Effect::Gravity);
         assert_eq!(def.gravity, [0.0, -9.81, 0.0]);

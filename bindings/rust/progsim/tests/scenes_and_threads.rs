@@ -25,6 +25,22 @@ fn progressive_obstacle_is_decimated_then_refined_with_the_cloth() {
 }
 
 #[test]
+fn cg_refinement_counts_only_on_the_finest_level() {
+    // solver.max_cg_iterations from the scene: the coarse proxy never refines, the wrung
+    // finest level does.
+    let mut sim =
+        Simulation::from_scene_file(repo_path("tests/data/twist_cg_refined.json")).unwrap();
+    assert_eq!(sim.param("solver.max_cg_iterations").unwrap(), 50.0);
+    sim.step_preview(6).unwrap();
+    assert!(sim.settle(300).unwrap());
+    sim.refine().unwrap();
+    assert!(sim.settle(300).unwrap());
+    let (coarse, fine) = (sim.level_stats(0).unwrap(), sim.level_stats(1).unwrap());
+    assert!(coarse.newton_iterations > 0 && coarse.cg_iterations == 0);
+    assert!(fine.newton_iterations > 0 && fine.cg_iterations > 0);
+}
+
+#[test]
 fn scene_file_simulation_owns_its_hierarchy() {
     let mut sim = Simulation::from_scene_file(repo_path("scenes/hanging_cloth.json")).unwrap();
     let hierarchy = sim.hierarchy().expect("a scene simulation owns its hierarchy");
