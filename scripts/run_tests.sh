@@ -27,8 +27,12 @@ echo "== Rust bindings (bindgen) =="
 scripts/test_rust.sh
 
 echo "== AddressSanitizer + UBSan build (clang): C++ and C tests, then libFuzzer =="
+# -O1 with line tables only (reports keep file:line): measured on 2 cores, the build takes
+# 477 s against 726 s at -O2 -g, and the tests below 489 s against 454 s.
+sanitizer_flags="-O1 -gline-tables-only -DNDEBUG"
 CC=clang-14 CXX=clang++-14 scripts/build.sh asan -DPROGSIM_SANITIZE=ON -DPROGSIM_FUZZ=ON \
-  -DPROGSIM_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  -DPROGSIM_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$sanitizer_flags" -DCMAKE_C_FLAGS_RELWITHDEBINFO="$sanitizer_flags"
 # The long contact scenes (90-step drapes, the two-turn twist, the spinning sphere, one step of
 # every bundled scene, the PSQ scenes' full progressive and direct runs) take 1-7 min each under
 # the sanitizers (Eigen's small fixed-size products run 15-30x slower there); they run in the
