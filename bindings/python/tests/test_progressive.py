@@ -74,15 +74,21 @@ def test_refinement_with_contact_reports_its_splits():
             assert isinstance(stats, progsim.RefinementStats)
 
 
+def _preview_then_refine_once(sim, steps):
+    """On a two-level scene: preview steps, equilibrium on the coarse level, refinement,
+    equilibrium on the finest; returns the two levels' statistics."""
+    sim.step_preview(steps)
+    assert sim.settle(300)
+    sim.refine()
+    assert sim.settle(300)
+    return sim.level_stats(0), sim.level_stats(1)
+
+
 def test_progressive_obstacle_statistics():
     """A progressive sphere (PSQ §4.6): decimated on the coarse level, refined with the cloth."""
     scene = Path(__file__).resolve().parents[3] / "tests" / "data" / "progressive_obstacle.json"
     with progsim.Simulation.from_scene_file(scene) as sim:
-        sim.step_preview(1)
-        assert sim.settle(300)
-        sim.refine()
-        assert sim.settle(300)
-        coarse, fine = sim.level_stats(0), sim.level_stats(1)
+        coarse, fine = _preview_then_refine_once(sim, 1)
         assert fine.obstacle_vertices == 162  # the sphere's own vertices
         assert 0 < coarse.obstacle_vertices < fine.obstacle_vertices
         assert coarse.obstacle_refinement.splits == 0
@@ -96,11 +102,7 @@ def test_cg_refinement_counts_only_on_the_finest_level(hanging):
     scene = Path(__file__).resolve().parents[3] / "tests" / "data" / "twist_cg_refined.json"
     with progsim.Simulation.from_scene_file(scene) as sim:
         assert sim.get_param("solver.max_cg_iterations") == 50
-        sim.step_preview(6)
-        assert sim.settle(300)
-        sim.refine()
-        assert sim.settle(300)
-        coarse, fine = sim.level_stats(0), sim.level_stats(1)
+        coarse, fine = _preview_then_refine_once(sim, 6)
         assert coarse.newton_iterations > 0 and coarse.cg_iterations == 0
         assert fine.newton_iterations > 0 and fine.cg_iterations > 0
     assert hanging.get_param("solver.max_cg_iterations") == 0  # opt-in

@@ -5,18 +5,24 @@ mod common;
 use std::thread;
 
 use common::{repo_path, square_cloth, TOP_CORNERS};
-use progsim::{Hierarchy, Simulation, SimulationDef};
+use progsim::{Hierarchy, LevelStats, Simulation, SimulationDef};
+
+/// On a two-level scene: preview steps, equilibrium on the coarse level, refinement,
+/// equilibrium on the finest; the two levels' statistics.
+fn preview_then_refine_once(sim: &mut Simulation<'_>, steps: u32) -> (LevelStats, LevelStats) {
+    sim.step_preview(steps).unwrap();
+    assert!(sim.settle(300).unwrap());
+    sim.refine().unwrap();
+    assert!(sim.settle(300).unwrap());
+    (sim.level_stats(0).unwrap(), sim.level_stats(1).unwrap())
+}
 
 #[test]
 fn progressive_obstacle_is_decimated_then_refined_with_the_cloth() {
     // PSQ §4.6: the coarse level meets a decimated copy of the sphere, the finest the sphere.
     let mut sim =
         Simulation::from_scene_file(repo_path("tests/data/progressive_obstacle.json")).unwrap();
-    sim.step_preview(1).unwrap();
-    assert!(sim.settle(300).unwrap());
-    sim.refine().unwrap();
-    assert!(sim.settle(300).unwrap());
-    let (coarse, fine) = (sim.level_stats(0).unwrap(), sim.level_stats(1).unwrap());
+    let (coarse, fine) = preview_then_refine_once(&mut sim, 1);
     assert_eq!(fine.obstacle_vertices, 162); // the sphere's own vertices
     assert!(coarse.obstacle_vertices > 0 && coarse.obstacle_vertices < fine.obstacle_vertices);
     assert_eq!(coarse.obstacle_refinement.splits, 0);
@@ -31,11 +37,7 @@ fn cg_refinement_counts_only_on_the_finest_level() {
     let mut sim =
         Simulation::from_scene_file(repo_path("tests/data/twist_cg_refined.json")).unwrap();
     assert_eq!(sim.param("solver.max_cg_iterations").unwrap(), 50.0);
-    sim.step_preview(6).unwrap();
-    assert!(sim.settle(300).unwrap());
-    sim.refine().unwrap();
-    assert!(sim.settle(300).unwrap());
-    let (coarse, fine) = (sim.level_stats(0).unwrap(), sim.level_stats(1).unwrap());
+    let (coarse, fine) = preview_then_refine_once(&mut sim, 6);
     assert!(coarse.newton_iterations > 0 && coarse.cg_iterations == 0);
     assert!(fine.newton_iterations > 0 && fine.cg_iterations > 0);
 }
