@@ -33,6 +33,7 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
   const int iterations = total.iterations + part.iterations;
   const int exact = total.exact_steps + part.exact_steps;
   const int cg = total.cg_iterations + part.cg_iterations;
+  const int extrapolated = total.extrapolated_steps + part.extrapolated_steps;
   const double shift = std::max(total.max_shift, part.max_shift);
   NewtonTimings timings = total.timings;
   timings.assembly += part.timings.assembly;
@@ -43,6 +44,7 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
   total.iterations = iterations;
   total.exact_steps = exact;
   total.cg_iterations = cg;
+  total.extrapolated_steps = extrapolated;
   total.max_shift = shift;
   total.timings = timings;
 }

@@ -43,7 +43,34 @@ double next_radius(double radius, const TruncatedNewtonStats& cg, double alpha) 
   return cg.on_boundary ? std::min(kRadiusGrowth * radius, kMaxRadius) : radius;
 }
 
+/// Extrapolation starts when a whole step's energy drop exceeds this multiple of the quadratic
+/// model's, ½|gᵀp| (Nocedal & Wright eq. 4.4's ratio ρ): then the parabola through E(0),
+/// E'(0) = gᵀp and E(1) has its minimum beyond α = 2, at 1 / (2 − ρ), or has none.
+constexpr double kExtrapolationRatio = 1.5;
+/// Doublings of α at most (α ≤ 1024) per step.
+constexpr int kMaxDoublings = 10;
+
 }  // namespace
+
+/// Doubles a whole step's α while the energy keeps falling and the step filters (CCD) admit
+/// the longer segment. @return true if it lengthened the step (trial_ is its end point).
+bool NewtonSolver::extrapolate(Problem& problem, const Vector& x, double energy, double slope,
+                               double& alpha, double& new_energy) {
+  if (!(slope < 0.0) || (new_energy - energy) / (0.5 * slope) <= kExtrapolationRatio) return false;
+  bool longer = false;
+  for (int k = 0; k < kMaxDoublings; ++k) {
+    longer_step_ = (2.0 * alpha) * step_;
+    if (problem.max_step(x, longer_step_) < 1.0) break;
+    longer_trial_ = x + longer_step_;
+    const double e = problem.value(longer_trial_);
+    if (!(e < new_energy)) break;  // also stops on NaN or +inf (a barrier was crossed)
+    alpha *= 2.0;
+    new_energy = e;
+    trial_.swap(longer_trial_);
+    longer = true;
+  }
+  return longer;
+}
 
 bool NewtonSolver::line_search(Problem& problem, const Vector& x, double energy, double slope,
                                const NewtonSettings& settings, double& alpha, double& new_energy) {
@@ -177,8 +204,11 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
       report.stop = NewtonStop::line_search_failed;
       break;
     }
+    if (alpha == 1.0 && settings.extrapolate &&
+        extrapolate(problem, x, energy, gradient_free_.dot(step_free_), alpha, new_energy))
+      ++report.extrapolated_steps;
     if (cg) cg_radius = next_radius(cg_radius, *cg, alpha);
-    if (alpha == 1.0 && failed_exact < 3) try_exact = true;
+    if (alpha >= 1.0 && failed_exact < 3) try_exact = true;
     x = trial_;
     energy = new_energy;
     if (problem.end_iteration(x)) energy = problem.value(x);  // e.g. contact stiffness grew

@@ -1,13 +1,131 @@
-// Projected Newton: exact on quadratics, stop reasons, diagonal shift on singular systems.
+// Projected Newton: exact on quadratics, stop reasons, diagonal shift on singular systems,
+// line-search extrapolation out of a saddle, within what the step filters admit.
 #include <gtest/gtest.h>
 
 #include "energy/gravity.hpp"
 #include "problem/problem.hpp"
 #include "solve/newton_solver.hpp"
+#include "solve/step_filter.hpp"
 #include "support/spring_term.hpp"
 
 using namespace progsim;
 using progsim::test_support::SpringTerm;
+
+namespace {
+
+/// E = Σ_i −c/2 ‖x_i‖² + ¼ ‖x_i‖⁴: concave at the origin, so per-element projection clamps
+/// its Hessian there to zero and projected Newton's steps leave the origin too slowly.
+class SaddleWell : public StencilTerm<1> {
+ public:
+  SaddleWell(int vertex, int num_vertices, double c)
+      : StencilTerm<1>({{vertex}}, num_vertices), c_(c) {}
+  const char* name() const override { return "saddle_well"; }
+
+ protected:
+  double element_value(int, const LocalVector& u) const override {
+    const double r2 = u.squaredNorm();
+    return -0.5 * c_ * r2 + 0.25 * r2 * r2;
+  }
+  void element_gradient(int, const LocalVector& u, LocalVector& g) const override {
+    g = (u.squaredNorm() - c_) * u;
+  }
+  void element_hessian(int, const LocalVector& u, LocalMatrix& h) const override {
+    h = (u.squaredNorm() - c_) * LocalMatrix::Identity() + 2.0 * u * u.transpose();
+  }
+
+ private:
+  double c_;
+};
+
+/// Admits only steps that keep one vertex inside the ball ‖x_v‖ ≤ radius (a stand-in for CCD);
+/// no energy of its own.
+class BallFilter : public EnergyTerm, public StepFilter {
+ public:
+  BallFilter(int vertex, double radius) : vertex_(vertex), radius_(radius) {}
+  const char* name() const override { return "ball"; }
+  double value(const Vector&) const override { return 0.0; }
+  void add_gradient(const Vector&, Vector&) const override {}
+  std::size_t hessian_entry_count() const override { return 0; }
+  void hessian_pattern(int*, int*) const override {}
+  void hessian_values(const Vector&, bool, double*) const override {}
+  void begin_solve(const Vector&) override {}
+  bool end_iteration(const Vector&) override { return false; }
+  /// The ball is convex, so the segment stays inside while its end does: the root of
+  /// ‖x + αp‖ = radius, with a 1 % margin as CCD keeps one.
+  double max_step(const Vector& x, const Vector& p) override {
+    const Vec3 a = x.segment<3>(3 * vertex_), d = p.segment<3>(3 * vertex_);
+    if ((a + d).norm() <= radius_) return 1.0;
+    const double dd = d.squaredNorm(), ad = a.dot(d), rest = radius_ * radius_ - a.squaredNorm();
+    return 0.99 * (-ad + std::sqrt(ad * ad + dd * rest)) / dd;
+  }
+
+ private:
+  int vertex_;
+  double radius_;
+};
+
+/// Vertex 0 fixed at the origin, vertex 1 free just off it, a unit spring between them and a
+/// saddle well of depth c = 2 on vertex 1: E(r) = −r²/2 + r⁴/4, minimal at ‖x₁‖ = 1.
+Problem saddle_problem(double filter_radius) {
+  Problem problem(6);
+  problem.add_term(std::make_unique<SpringTerm>(std::vector<std::array<int, 2>>{{0, 1}}, 2, 1.0));
+  problem.add_term(std::make_unique<SaddleWell>(1, 2, 2.0));
+  if (filter_radius > 0.0) problem.add_term(std::make_unique<BallFilter>(1, filter_radius));
+  std::vector<bool> fixed(6, false);
+  fixed[0] = fixed[1] = fixed[2] = true;
+  problem.set_fixed_dofs(fixed);
+  problem.finalize();
+  return problem;
+}
+
+Vector just_off_the_origin() {
+  Vector x = Vector::Zero(6);
+  x[3] = 1e-6;
+  return x;
+}
+
+/// A tolerance below the start's distance from the origin (the first step is about as long).
+NewtonSettings saddle_settings() {
+  NewtonSettings settings;
+  settings.tolerance = 1e-10;
+  return settings;
+}
+
+}  // namespace
+
+TEST(NewtonSolver, ExtrapolatesOutOfASaddleToTheAnalyticMinimum) {
+  // Projected steps only double ‖x₁‖ near the origin (about 20 iterations to leave it);
+  // extrapolation doubles α instead while the energy falls.
+  NewtonReport report[2];
+  for (bool extrapolate : {false, true}) {
+    Problem problem = saddle_problem(0.0);
+    Vector x = just_off_the_origin();
+    NewtonSettings settings = saddle_settings();
+    settings.extrapolate = extrapolate;
+    NewtonSolver solver;
+    report[extrapolate] = solver.minimize(problem, x, settings, 1.0, 1.0);
+    EXPECT_EQ(report[extrapolate].stop, NewtonStop::converged) << "extrapolate " << extrapolate;
+    EXPECT_NEAR(x[3], 1.0, 1e-8) << "extrapolate " << extrapolate;
+    EXPECT_NEAR(x.segment<2>(4).norm(), 0.0, 1e-12);
+  }
+  EXPECT_EQ(report[0].extrapolated_steps, 0);
+  EXPECT_GT(report[1].extrapolated_steps, 0);
+  EXPECT_LE(2 * report[1].iterations, report[0].iterations)
+      << report[1].iterations << " iterations with extrapolation, " << report[0].iterations
+      << " without";
+}
+
+TEST(NewtonSolver, NeverExtrapolatesPastWhatTheStepFiltersAdmit) {
+  // The minimum (‖x₁‖ = 1) lies beyond the filter's ball of radius 0.5: unfiltered doublings
+  // would overshoot it from ‖x₁‖ ≈ 1e-3 in one step.
+  Problem problem = saddle_problem(0.5);
+  Vector x = just_off_the_origin();
+  NewtonSolver solver;
+  const NewtonReport report = solver.minimize(problem, x, saddle_settings(), 1.0, 1.0);
+  EXPECT_GT(report.extrapolated_steps, 0);
+  EXPECT_LE(x.segment<3>(3).norm(), 0.5);
+  EXPECT_GT(x[3], 0.4);  // it did move out to the ball's edge
+}
 
 TEST(NewtonSolver, SolvesAQuadraticInOneStepToTheAnalyticEquilibrium) {
   // A chain of springs hanging from vertex 0: vertex i sits below vertex i−1 by the weight
@@ -28,6 +146,7 @@ TEST(NewtonSolver, SolvesAQuadraticInOneStepToTheAnalyticEquilibrium) {
   const NewtonReport report = solver.minimize(problem, x, NewtonSettings{}, 1.0, 1.0);
   EXPECT_EQ(report.stop, NewtonStop::converged);
   EXPECT_LE(report.iterations, 2);
+  EXPECT_EQ(report.extrapolated_steps, 0);  // the model is exact: ρ = 1
   double y = 0.0;
   for (int i = 1; i < n; ++i) {
     y -= (n - i) * m * g / k;
