@@ -155,7 +155,11 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
   double energy = problem.value(x);
   // Solves whose first exact attempts keep failing (a hanging cloth: compressed, indefinite)
   // stop paying for them; every 8th solve probes again.
-  bool try_exact = exact_failure_streak_ < 3 || solves_ % 8 == 0;
+  // The unprojected Hessian is tried only where it is the energy's (or always asked for): a
+  // stand-in (the PSQ proxy's) only preconditions, its unprojected steps are no Newton steps.
+  const bool unprojected_allowed =
+      problem.hessian_is_exact() || settings.projection == HessianProjection::never;
+  bool try_exact = unprojected_allowed && (exact_failure_streak_ < 3 || solves_ % 8 == 0);
   ++solves_;
   double cg_radius = kInitialRadius;  // CG's trust region, per solve
   int failed_exact = 0;               // an indefinite problem (e.g. pressure) stops trying after 3
@@ -208,7 +212,7 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
         extrapolate(problem, x, energy, gradient_free_.dot(step_free_), alpha, new_energy))
       ++report.extrapolated_steps;
     if (cg) cg_radius = next_radius(cg_radius, *cg, alpha);
-    if (alpha >= 1.0 && failed_exact < 3) try_exact = true;
+    if (alpha >= 1.0 && failed_exact < 3 && unprojected_allowed) try_exact = true;
     x = trial_;
     energy = new_energy;
     if (problem.end_iteration(x)) energy = problem.value(x);  // e.g. contact stiffness grew

@@ -170,6 +170,33 @@ TEST(NewtonSolver, ShiftsTheDiagonalWhenTheHessianIsSingular) {
   EXPECT_NEAR((x.segment<3>(0) - x.segment<3>(6)).norm(), 0.0, 1e-6);
 }
 
+TEST(NewtonSolver, NeverTakesUnprojectedStepsOfAStandInHessian) {
+  // The same definite springs, once declaring their Hessian exact and once a stand-in (as the
+  // PSQ proxy's is): adaptive projection factorizes the unprojected Hessian only in the first.
+  struct StandInSprings : SpringTerm {
+    using SpringTerm::SpringTerm;
+    bool hessian_is_exact() const override { return false; }
+  };
+  for (bool stand_in : {false, true}) {
+    Problem problem(9);
+    const std::vector<std::array<int, 2>> pairs{{0, 1}, {1, 2}};
+    if (stand_in)
+      problem.add_term(std::make_unique<StandInSprings>(pairs, 3, 1.0));
+    else
+      problem.add_term(std::make_unique<SpringTerm>(pairs, 3, 1.0));
+    std::vector<bool> fixed(9, false);
+    fixed[0] = fixed[1] = fixed[2] = true;
+    problem.set_fixed_dofs(fixed);
+    problem.finalize();
+    Vector x(9);
+    x << 0, 0, 0, 1, 0, 0, 3, 0, 0;
+    NewtonSolver solver;
+    const NewtonReport report = solver.minimize(problem, x, NewtonSettings{}, 1.0, 1.0);
+    EXPECT_EQ(report.stop, NewtonStop::converged);
+    EXPECT_EQ(report.exact_steps > 0, !stand_in) << "stand-in " << stand_in;
+  }
+}
+
 TEST(NewtonSolver, ReportsTheIterationCap) {
   Problem problem(6);
   problem.add_term(std::make_unique<SpringTerm>(std::vector<std::array<int, 2>>{{0, 1}}, 2, 1.0));
