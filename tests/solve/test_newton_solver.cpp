@@ -2,6 +2,8 @@
 // line-search extrapolation out of a saddle, within what the step filters admit.
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include "energy/gravity.hpp"
 #include "problem/problem.hpp"
 #include "solve/newton_solver.hpp"
@@ -108,6 +110,9 @@ TEST(NewtonSolver, ExtrapolatesOutOfASaddleToTheAnalyticMinimum) {
     EXPECT_NEAR(x[3], 1.0, 1e-8) << "extrapolate " << extrapolate;
     EXPECT_NEAR(x.segment<2>(4).norm(), 0.0, 1e-12);
   }
+  std::cout << "[ saddle ] Newton iterations: " << report[0].iterations << " projected, "
+            << report[1].iterations << " extrapolated (" << report[1].extrapolated_steps
+            << " steps lengthened)" << std::endl;
   EXPECT_EQ(report[0].extrapolated_steps, 0);
   EXPECT_GT(report[1].extrapolated_steps, 0);
   EXPECT_LE(2 * report[1].iterations, report[0].iterations)
