@@ -66,6 +66,21 @@ class BallFilter : public EnergyTerm, public StepFilter {
   double radius_;
 };
 
+/// Fixes vertex 0 (its three DOFs) and finalizes the problem.
+void fix_vertex_zero_and_finalize(Problem& problem) {
+  std::vector<bool> fixed(problem.num_dofs(), false);
+  fixed[0] = fixed[1] = fixed[2] = true;
+  problem.set_fixed_dofs(fixed);
+  problem.finalize();
+}
+
+/// Three vertices on the x axis at 0, 1 and 3.
+Vector three_on_a_line() {
+  Vector x(9);
+  x << 0, 0, 0, 1, 0, 0, 3, 0, 0;
+  return x;
+}
+
 /// Vertex 0 fixed at the origin, vertex 1 free just off it, a unit spring between them and a
 /// saddle well of depth c = 2 on vertex 1: E(r) = −r²/2 + r⁴/4, minimal at ‖x₁‖ = 1.
 Problem saddle_problem(double filter_radius) {
@@ -73,10 +88,7 @@ Problem saddle_problem(double filter_radius) {
   problem.add_term(std::make_unique<SpringTerm>(std::vector<std::array<int, 2>>{{0, 1}}, 2, 1.0));
   problem.add_term(std::make_unique<SaddleWell>(1, 2, 2.0));
   if (filter_radius > 0.0) problem.add_term(std::make_unique<BallFilter>(1, filter_radius));
-  std::vector<bool> fixed(6, false);
-  fixed[0] = fixed[1] = fixed[2] = true;
-  problem.set_fixed_dofs(fixed);
-  problem.finalize();
+  fix_vertex_zero_and_finalize(problem);
   return problem;
 }
 
@@ -142,10 +154,7 @@ TEST(NewtonSolver, SolvesAQuadraticInOneStepToTheAnalyticEquilibrium) {
   Problem problem(3 * n);
   problem.add_term(std::make_unique<SpringTerm>(pairs, n, k));
   problem.add_term(std::make_unique<Gravity>(Eigen::VectorXd::Constant(n, m), Vec3(0, -g, 0)));
-  std::vector<bool> fixed(3 * n, false);
-  fixed[0] = fixed[1] = fixed[2] = true;
-  problem.set_fixed_dofs(fixed);
-  problem.finalize();
+  fix_vertex_zero_and_finalize(problem);
   Vector x = Vector::Zero(3 * n);
   NewtonSolver solver;
   const NewtonReport report = solver.minimize(problem, x, NewtonSettings{}, 1.0, 1.0);
@@ -166,8 +175,7 @@ TEST(NewtonSolver, ShiftsTheDiagonalWhenTheHessianIsSingular) {
   problem.add_term(
       std::make_unique<SpringTerm>(std::vector<std::array<int, 2>>{{0, 1}, {1, 2}}, 3, 1.0));
   problem.finalize();
-  Vector x(9);
-  x << 0, 0, 0, 1, 0, 0, 3, 0, 0;
+  Vector x = three_on_a_line();
   NewtonSolver solver;
   const NewtonReport report = solver.minimize(problem, x, NewtonSettings{}, 1.0, 1.0);
   EXPECT_EQ(report.stop, NewtonStop::converged);
@@ -189,12 +197,8 @@ TEST(NewtonSolver, NeverTakesUnprojectedStepsOfAStandInHessian) {
       problem.add_term(std::make_unique<StandInSprings>(pairs, 3, 1.0));
     else
       problem.add_term(std::make_unique<SpringTerm>(pairs, 3, 1.0));
-    std::vector<bool> fixed(9, false);
-    fixed[0] = fixed[1] = fixed[2] = true;
-    problem.set_fixed_dofs(fixed);
-    problem.finalize();
-    Vector x(9);
-    x << 0, 0, 0, 1, 0, 0, 3, 0, 0;
+    fix_vertex_zero_and_finalize(problem);
+    Vector x = three_on_a_line();
     NewtonSolver solver;
     const NewtonReport report = solver.minimize(problem, x, NewtonSettings{}, 1.0, 1.0);
     EXPECT_EQ(report.stop, NewtonStop::converged);
@@ -205,10 +209,7 @@ TEST(NewtonSolver, NeverTakesUnprojectedStepsOfAStandInHessian) {
 TEST(NewtonSolver, ReportsTheIterationCap) {
   Problem problem(6);
   problem.add_term(std::make_unique<SpringTerm>(std::vector<std::array<int, 2>>{{0, 1}}, 2, 1.0));
-  std::vector<bool> fixed(6, false);
-  fixed[0] = fixed[1] = fixed[2] = true;
-  problem.set_fixed_dofs(fixed);
-  problem.finalize();
+  fix_vertex_zero_and_finalize(problem);
   Vector x = Vector::Ones(6);
   x.head<3>().setZero();
   NewtonSettings settings;
