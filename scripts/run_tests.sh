@@ -35,10 +35,10 @@ CC=clang-14 CXX=clang++-14 scripts/build.sh asan -DPROGSIM_SANITIZE=ON -DPROGSIM
   -DPROGSIM_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$sanitizer_flags" -DCMAKE_C_FLAGS_RELWITHDEBINFO="$sanitizer_flags"
 # The long contact scenes (90-step drapes, the two-turn twist, the spinning sphere, one step of
-# every bundled scene, the PSQ scenes' full progressive and direct runs) took 1-7 min each under
-# the sanitizers with Eigen instrumented; they run in the release build above. Under the sanitizers the same contact
-# code runs through its unit tests (barrier, friction, CCD, broad phase, distances, safe
-# refinement) and the short scenes (incline, strain limit, bad input).
+# every bundled scene, the PSQ scenes' full progressive and direct runs) took 1-7 min each
+# under the sanitizers with Eigen instrumented; they run in the release build above. Under the
+# sanitizers the same contact code runs through its unit tests (barrier, friction, CCD, broad
+# phase, distances, safe refinement) and the short scenes (incline, strain limit, bad input).
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   LSAN_OPTIONS="suppressions=$PWD/tests/lsan_suppressions.txt" \
   ctest --test-dir build/asan --output-on-failure -j "$(nproc)" \

@@ -37,15 +37,16 @@ constexpr double kMaxRadius = 1e4;
 
 /// The next trust-region radius from how the line search took a refined step: doubled after
 /// a whole step that reached the boundary, shrunk to the length taken after a cut one (never
-/// below the projected step's), else kept.
+/// below the projected step's), else kept. An extrapolated step (α > 1) counts as a whole one:
+/// the radius bounds the model's step, extrapolation measures the energy's.
 double next_radius(double radius, const TruncatedNewtonStats& cg, double alpha) {
   if (alpha < 1.0) return std::max(1.0, alpha * cg.length);
   return cg.on_boundary ? std::min(kRadiusGrowth * radius, kMaxRadius) : radius;
 }
 
-/// Extrapolation starts when a whole step's energy drop exceeds this multiple of the quadratic
-/// model's, ½|gᵀp| (Nocedal & Wright eq. 4.4's ratio ρ): then the parabola through E(0),
-/// E'(0) = gᵀp and E(1) has its minimum beyond α = 2, at 1 / (2 − ρ), or has none.
+/// Extrapolation starts when a whole step's energy drop exceeds this multiple of the Newton
+/// model's, ½|gᵀp| for Hp = −g (Nocedal & Wright eq. 4.4's ratio ρ): then the parabola through
+/// E(0), E'(0) = gᵀp and E(1) has its minimum beyond α = 2, at 1 / (2 − ρ), or has none.
 constexpr double kExtrapolationRatio = 1.5;
 /// Doublings of α at most (α ≤ 1024) per step.
 constexpr int kMaxDoublings = 10;
@@ -53,14 +54,20 @@ constexpr int kMaxDoublings = 10;
 }  // namespace
 
 /// Doubles a whole step's α while the energy keeps falling and the step filters (CCD) admit
-/// the longer segment. @return true if it lengthened the step (trial_ is its end point).
+/// the longer segment; a refused segment is followed by a call for the accepted one, after which
+/// the filters again admit energies there (step_filter.hpp). @return true if it lengthened the
+/// step (trial_ is its end point).
 bool NewtonSolver::extrapolate(Problem& problem, const Vector& x, double energy, double slope,
                                double& alpha, double& new_energy) {
   if (!(slope < 0.0) || (new_energy - energy) / (0.5 * slope) <= kExtrapolationRatio) return false;
   bool longer = false;
   for (int k = 0; k < kMaxDoublings; ++k) {
     longer_step_ = (2.0 * alpha) * step_;
-    if (problem.max_step(x, longer_step_) < 1.0) break;
+    if (problem.max_step(x, longer_step_) < 1.0) {
+      longer_step_ = alpha * step_;
+      problem.max_step(x, longer_step_);  // admitted before: re-establishes the filters' state
+      break;
+    }
     longer_trial_ = x + longer_step_;
     const double e = problem.value(longer_trial_);
     if (!(e < new_energy)) break;  // also stops on NaN or +inf (a barrier was crossed)
@@ -152,6 +159,8 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
   NewtonReport report;
   NewtonTimings& time = report.timings;
   problem.begin_solve(x);
+  longer_step_.resize(x.size());  // extrapolation's buffers, sized once
+  longer_trial_.resize(x.size());
   double energy = problem.value(x);
   // Solves whose first exact attempts keep failing (a hanging cloth: compressed, indefinite)
   // stop paying for them; every 8th solve probes again.
@@ -203,13 +212,13 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
     }
     ScopedTimer timer(time.line_search);
     double alpha = 1.0, new_energy = energy;
-    if (!line_search(problem, x, energy, gradient_free_.dot(step_free_), settings, alpha,
-                     new_energy)) {
+    const double slope = gradient_free_.dot(step_free_);
+    if (!line_search(problem, x, energy, slope, settings, alpha, new_energy)) {
       report.stop = NewtonStop::line_search_failed;
       break;
     }
     if (alpha == 1.0 && settings.extrapolate &&
-        extrapolate(problem, x, energy, gradient_free_.dot(step_free_), alpha, new_energy))
+        extrapolate(problem, x, energy, slope, alpha, new_energy))
       ++report.extrapolated_steps;
     if (cg) cg_radius = next_radius(cg_radius, *cg, alpha);
     if (alpha >= 1.0 && failed_exact < 3 && unprojected_allowed) try_exact = true;

@@ -26,8 +26,8 @@ enum class HessianProjection {
   /// (stiff thin strips) exact steps converge in far fewer iterations (Longva et al. 2023).
   /// Only where the problem's Hessian is exact (Problem::hessian_is_exact): a stand-in Hessian
   /// (the PSQ proxy's) is always projected. Unprojected, its steps are no Newton steps of the
-  /// proxy energy; on a perturbed twist they stalled level-1 settles at α = 2⁻¹⁰ for 500
-  /// solves.
+  /// proxy energy: on a perturbed twist, level 1's solves took them at α = 2⁻¹⁰, 500 solves
+  /// in a row.
   adaptive,
   /// Always the exact Hessian (shifted when indefinite); for tests and comparison.
   never,
@@ -53,10 +53,11 @@ struct NewtonSettings {
   /// Lengthen a whole step (α = 1) whose energy fell much more than the quadratic model
   /// predicted, by doubling α while the energy keeps falling and CCD allows (line-search
   /// extrapolation, Nocedal & Wright 2006 §3.5). Projection overstates the curvature of a
-  /// shell leaving a flat or buckling state, so its steps are too short there. Solved directly
-  /// (`progsim run --direct`), scenes/psq_twist.json took 1538 Newton iterations and 63.5 s
-  /// without (10 of 20 steps at the cap), 975 and 32.5 s with (1 of 20); the crushed can 4921
-  /// and 3691, the balloon 141 and 64. False for tests and comparison.
+  /// shell leaving a flat or buckling state, so its steps are too short there. The twist at
+  /// 1089 vertices took 975 Newton iterations with it, 1538 without, 1.50× faster (19 against
+  /// 10 of 20 steps converged; bench/results/newton_refinement.csv); one `progsim run --direct`
+  /// each: the crushed can 3691 against 4921, the balloon 64 against 141. False for tests and
+  /// comparison.
   bool extrapolate = true;
 };
 

@@ -120,7 +120,6 @@ TEST(NewtonSolver, ExtrapolatesOutOfASaddleToTheAnalyticMinimum) {
     report[extrapolate] = solver.minimize(problem, x, settings, 1.0, 1.0);
     EXPECT_EQ(report[extrapolate].stop, NewtonStop::converged) << "extrapolate " << extrapolate;
     EXPECT_NEAR(x[3], 1.0, 1e-8) << "extrapolate " << extrapolate;
-    EXPECT_NEAR(x.segment<2>(4).norm(), 0.0, 1e-12);
   }
   std::cout << "[ saddle ] Newton iterations: " << report[0].iterations << " projected, "
             << report[1].iterations << " extrapolated (" << report[1].extrapolated_steps
