@@ -30,23 +30,17 @@ constexpr double kStalledScriptStep = 1e-3;
 
 /// Sums the iterations and timings of a solve into a step's report; the rest is the last solve's.
 void accumulate(NewtonReport& total, const NewtonReport& part) {
-  const int iterations = total.iterations + part.iterations;
-  const int exact = total.exact_steps + part.exact_steps;
-  const int cg = total.cg_iterations + part.cg_iterations;
-  const int extrapolated = total.extrapolated_steps + part.extrapolated_steps;
-  const double shift = std::max(total.max_shift, part.max_shift);
-  NewtonTimings timings = total.timings;
-  timings.assembly += part.timings.assembly;
-  timings.factorization += part.timings.factorization;
-  timings.solve += part.timings.solve;
-  timings.line_search += part.timings.line_search;
-  total = part;
-  total.iterations = iterations;
-  total.exact_steps = exact;
-  total.cg_iterations = cg;
-  total.extrapolated_steps = extrapolated;
-  total.max_shift = shift;
-  total.timings = timings;
+  NewtonReport sum = part;  // the last solve's stop, energy and norms
+  sum.iterations += total.iterations;
+  sum.exact_steps += total.exact_steps;
+  sum.cg_iterations += total.cg_iterations;
+  sum.extrapolated_steps += total.extrapolated_steps;
+  sum.max_shift = std::max(total.max_shift, part.max_shift);
+  sum.timings.assembly += total.timings.assembly;
+  sum.timings.factorization += total.timings.factorization;
+  sum.timings.solve += total.timings.solve;
+  sum.timings.line_search += total.timings.line_search;
+  total = sum;
 }
 
 /// Face pairs of the shell at x and the obstacles (where `contact` holds them) that cross, by
