@@ -19,6 +19,12 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommand& options) {
   cmd->add_option("--max-settles", options.max_settles,
                   "solves per level while waiting for equilibrium")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--direct-levels", options.direct_levels,
+                  "levels to solve directly (default: all; 0 = coarsest)");
+  cmd->add_option("--direct-time-ratio", options.direct_time_ratio,
+                  "stop each direct solve once it has taken this many times the progressive "
+                  "time; its ratios are then lower bounds (default 0: no limit)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", options.quiet, "no progress bar");
   return cmd;
 }
@@ -27,7 +33,8 @@ int run_accuracy_command(const AccuracyCommand& options) {
   const Scene scene = load_scene_file(options.scene_path);
   ProgressBar bar("accuracy", 100);
   const AccuracyReport report =
-      run_accuracy(scene, options.max_settles, options.quiet ? nullptr : draw_percent, &bar);
+      run_accuracy(scene, options.max_settles, options.quiet ? nullptr : draw_percent, &bar,
+                   DirectSolves{options.direct_levels, options.direct_time_ratio});
   if (!options.quiet) bar.finish();
   write_accuracy_report(report, options.out_dir);
   std::printf("%s", accuracy_markdown(report).c_str());

@@ -3,14 +3,18 @@
 /// direct at every level (table, CSV and plots).
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 namespace progsim::cli {
 
-/// Options of `progsim accuracy SCENE --out DIR [--max-settles N] [--quiet]`.
+/// Options of `progsim accuracy SCENE --out DIR [--max-settles N] [--direct-levels L ...]
+/// [--direct-time-ratio R] [--quiet]`.
 struct AccuracyCommand {
   std::string scene_path;
   std::string out_dir;
   int max_settles = 500;
+  std::vector<int> direct_levels;  ///< empty: every level
+  double direct_time_ratio = 0.0;  ///< 0: direct solves run to the end
   bool quiet = false;
 };
 

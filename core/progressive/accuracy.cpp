@@ -32,24 +32,31 @@ void set_errors(AccuracyRow& row, const Positions& x, const Positions& reference
 
 /// The scene solved directly on `level` over its load script and settled to equilibrium (at
 /// most `max_settles` more solves, as the progressive levels), prolonged to the finest mesh.
+/// Stops unfinished once it has taken longer than `time_limit` seconds (0: no limit).
 AccuracyRow direct_row(const Scene& scene, const ProgressiveSimulation& psq, int level,
-                       int max_settles, Positions& prolonged) {
+                       int max_settles, double time_limit, Positions& prolonged) {
   AccuracyRow row;
   row.method = Method::direct;
   row.level = level;
   Timer timer;
+  bool stopped = false;
+  const auto may_go_on = [&] {
+    stopped = stopped || (time_limit > 0.0 && timer.seconds() > time_limit);
+    return !stopped;
+  };
   DirectSimulation sim(scene, SimulationLevel{psq.shared_hierarchy(), level, {}});
   StepRecord last;
-  for (int s = 0; s < scene.num_steps(); ++s) {
+  for (; row.load_steps < scene.num_steps() && may_go_on(); ++row.load_steps) {
     last = sim.step();
     row.newton_iterations += last.newton.iterations;
   }
-  for (int k = 0; k < max_settles && !last.equilibrium; ++k) {
+  for (int k = 0; k < max_settles && !last.equilibrium && may_go_on(); ++k) {
     last = sim.settle();
     row.newton_iterations += last.newton.iterations;
   }
   row.seconds = timer.seconds();
-  row.converged = last.equilibrium;
+  row.finished = !stopped;
+  row.converged = !stopped && last.equilibrium;
   row.intersecting_pairs = static_cast<int>(sim.intersecting_face_pairs());
   row.vertices = sim.model().rest.num_vertices();
   prolonged = level < psq.finest() ? psq.prolong_to_finest(level, Positions(sim.positions()))
@@ -151,10 +158,25 @@ std::string format(const char* pattern, double value) {
   return buffer;
 }
 
+/// The levels to solve directly: those asked for, each checked, or every level.
+std::vector<int> direct_levels(const DirectSolves& direct, int finest) {
+  if (!(direct.time_ratio >= 0.0))
+    fail(Status::invalid_argument, "direct time ratio must be >= 0 (0: no limit)");
+  for (int level : direct.levels)
+    if (level < 0 || level > finest)
+      fail(Status::invalid_argument, "direct level " + std::to_string(level) +
+                                         " does not exist (levels 0.." + std::to_string(finest) +
+                                         ")");
+  if (!direct.levels.empty()) return direct.levels;
+  std::vector<int> all(finest + 1);
+  for (int level = 0; level <= finest; ++level) all[level] = level;
+  return all;
+}
+
 }  // namespace
 
 AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgress progress,
-                            void* user) {
+                            void* user, const DirectSolves& direct) {
   validate_scene(scene);
   if (!scene.progressive.enabled())
     fail(Status::invalid_scene, scene.name +
@@ -168,7 +190,8 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
   report.hierarchy_seconds = build.seconds();
   ProgressiveSimulation psq(scene, hierarchy);
   const int finest = psq.finest();
-  const double units = 2.0 * (finest + 1);
+  const std::vector<int> direct_order = direct_levels(direct, finest);
+  const double units = finest + 1.0 + direct_order.size();
   std::vector<Positions> prolonged;
   Timer total;
   double excluded = 0.0;  // time the method does not need (checks, prolongation for errors)
@@ -186,6 +209,7 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
     row.refine_seconds = psq.records()[level].refine_seconds;
     row.newton_iterations = psq.records()[level].newton_iterations;
     row.converged = psq.records()[level].equilibrium;
+    row.load_steps = scene.num_steps();
     Timer prolong;  // checking and prolonging the state is not the method's work
     row.intersecting_pairs = static_cast<int>(psq.current().intersecting_face_pairs());
     report.rows.push_back(row);
@@ -193,10 +217,12 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
     excluded += prolong.seconds();
     if (level == finest) break;
   }
-  for (int level = 0; level <= finest; ++level) {
-    notify(progress, user, (finest + 1 + level) / units, "direct level " + std::to_string(level));
+  const double time_limit = direct.time_ratio * report.rows.back().seconds;
+  for (std::size_t k = 0; k < direct_order.size(); ++k) {
+    const int level = direct_order[k];
+    notify(progress, user, (finest + 1 + k) / units, "direct level " + std::to_string(level));
     prolonged.emplace_back();
-    report.rows.push_back(direct_row(scene, psq, level, max_settles, prolonged.back()));
+    report.rows.push_back(direct_row(scene, psq, level, max_settles, time_limit, prolonged.back()));
   }
   const Positions reference = prolonged[finest];
   report.diagonal = bounding_box_diagonal(hierarchy->levels.back().rest.vertices);
@@ -209,13 +235,13 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
 std::string accuracy_csv(const AccuracyReport& report) {
   std::string csv =
       "method,level,vertices,seconds,refine_seconds,newton_iterations,error_rms,error_max,"
-      "intersecting_pairs,converged\n";
+      "intersecting_pairs,converged,load_steps,finished\n";
   for (const AccuracyRow& r : report.rows) {
     char line[256];
-    std::snprintf(line, sizeof line, "%s,%d,%d,%.6g,%.6g,%d,%.6g,%.6g,%d,%d\n",
+    std::snprintf(line, sizeof line, "%s,%d,%d,%.6g,%.6g,%d,%.6g,%.6g,%d,%d,%d,%d\n",
                   method_name(r.method), r.level, r.vertices, r.seconds, r.refine_seconds,
                   r.newton_iterations, r.error_rms, r.error_max, r.intersecting_pairs,
-                  r.converged ? 1 : 0);
+                  r.converged ? 1 : 0, r.load_steps, r.finished ? 1 : 0);
     csv += line;
   }
   return csv;
@@ -234,14 +260,15 @@ std::string accuracy_markdown(const AccuracyReport& report) {
       "final state, shell and obstacles.\n\n";
   md +=
       "| method | level | vertices | time (s) | refinement (s) | Newton iterations | error RMS "
-      "| error max | crossing face pairs | converged |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n";
+      "| error max | crossing face pairs | converged | load steps |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const AccuracyRow& r : report.rows)
     md += std::string("| ") + method_name(r.method) + " | " + std::to_string(r.level) + " | " +
           std::to_string(r.vertices) + " | " + format("%.3g", r.seconds) + " | " +
           format("%.3g", r.refine_seconds) + " | " + std::to_string(r.newton_iterations) + " | " +
           format("%.3g", r.error_rms) + " | " + format("%.3g", r.error_max) + " | " +
-          std::to_string(r.intersecting_pairs) + " | " + (r.converged ? "yes" : "no") + " |\n";
+          std::to_string(r.intersecting_pairs) + " | " + (r.converged ? "yes" : "no") + " | " +
+          std::to_string(r.load_steps) + (r.finished ? "" : ", stopped unfinished") + " |\n";
   const int finest = finest_level(report);
   const AccuracyRow* preview = find_row(report, Method::progressive, 0);
   const AccuracyRow* full = find_row(report, Method::progressive, finest);
@@ -250,13 +277,20 @@ std::string accuracy_markdown(const AccuracyReport& report) {
   double refine = 0.0;
   for (const AccuracyRow& r : report.rows)
     if (r.method == Method::progressive) refine += r.refine_seconds;
+  // A direct solve stopped unfinished took at least its seconds: the ratios are lower bounds.
+  const std::string at_least = direct->finished ? "" : ">= ";
   md += "\nMeasured in this run:\n\n";
+  if (!direct->finished)
+    md += "- the direct finest solve was stopped unfinished after " +
+          format("%.3g", direct->seconds) + " s, at load step " +
+          std::to_string(direct->load_steps) + " of " + std::to_string(full->load_steps) +
+          ": its ratios below are lower bounds\n";
   md += "- coarse preview vs direct finest solve: " + format("%.3g", preview->seconds) + " s vs " +
-        format("%.3g", direct->seconds) + " s, " +
+        at_least + format("%.3g", direct->seconds) + " s, " + at_least +
         format("%.3g", direct->seconds / preview->seconds) + "x faster\n";
   md += "- progressive to the converged finest vs direct finest solve: " +
-        format("%.3g", full->seconds) + " s vs " + format("%.3g", direct->seconds) + " s, " +
-        format("%.3g", direct->seconds / full->seconds) + "x\n";
+        format("%.3g", full->seconds) + " s vs " + at_least + format("%.3g", direct->seconds) +
+        " s, " + at_least + format("%.3g", direct->seconds / full->seconds) + "x\n";
   if (const AccuracyRow* coarse = find_row(report, Method::direct, 0))
     md += "- coarse preview vs direct coarse solve, error RMS (max): " +
           format("%.3g", preview->error_rms) + " (" + format("%.3g", preview->error_max) + ") vs " +

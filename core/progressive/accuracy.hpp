@@ -28,6 +28,10 @@ struct AccuracyRow {
   int intersecting_pairs = 0;
   /// The level ended at equilibrium (StepRecord::equilibrium), progressive or direct.
   bool converged = false;
+  int load_steps = 0;  ///< load steps of the script solved (direct rows stopped early: fewer)
+  /// False for a direct solve stopped by DirectSolves::time_ratio: its `seconds` is then only a
+  /// lower bound of what the whole solve takes.
+  bool finished = true;
 };
 
 /// All rows of one scene (progressive levels first, then the direct solves by level).
@@ -42,13 +46,25 @@ struct AccuracyReport {
 /// fraction of the whole run done. Returning false cancels (Error(cancelled)).
 using AccuracyProgress = bool (*)(void* user, double fraction, const char* phase);
 
+/// Which levels an accuracy run solves directly, and how long each direct solve may take. On
+/// large scenes the direct finest solve can take hours; a time limit still measures a lower
+/// bound of the progressive speed-up.
+struct DirectSolves {
+  std::vector<int> levels;  ///< solved in this order; empty: every level, coarsest first
+  /// A direct solve stops after the load step (or settling solve) that takes it past this many
+  /// times the progressive time to the converged finest level; 0: no limit.
+  double time_ratio = 0.0;
+};
+
 /// Runs the scene progressively through its load script (preview on level 0 to equilibrium,
 /// refinement and equilibrium on each finer level, the finest to convergence) and directly on
-/// every level with the same solver settings, also to equilibrium. The scene must ask for
-/// coarse levels (Error(invalid_scene) otherwise) and be quasistatic (Error(unsupported)).
-/// Settling stops after `max_settles` solves per level and method.
+/// the levels `direct` names with the same solver settings, also to equilibrium. The scene must
+/// ask for coarse levels (Error(invalid_scene) otherwise) and be quasistatic
+/// (Error(unsupported)); a direct level that does not exist or a negative time ratio is
+/// Error(invalid_argument). Settling stops after `max_settles` solves per level and method.
 AccuracyReport run_accuracy(const Scene& scene, int max_settles = 500,
-                            AccuracyProgress progress = nullptr, void* user = nullptr);
+                            AccuracyProgress progress = nullptr, void* user = nullptr,
+                            const DirectSolves& direct = {});
 
 /// Writes `accuracy.csv`, `accuracy.md` (table and speed-ups), `error_vs_time.png`,
 /// `error_by_level.png` and `time_by_level.png` into `dir` (created). Throws Error(io_error)

@@ -188,13 +188,30 @@ TEST_F(Cli, AccuracyWritesTableCsvAndPlots) {
   std::getline(csv, header);
   EXPECT_EQ(header,
             "method,level,vertices,seconds,refine_seconds,newton_iterations,error_rms,error_max,"
-            "intersecting_pairs,converged");
+            "intersecting_pairs,converged,load_steps,finished");
   int lines = 0;
   for (std::string line; std::getline(csv, line);) {
     ++lines;
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 9) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 11) << line;
   }
   EXPECT_EQ(lines, 6);  // 3 levels, progressive and direct
+}
+
+TEST_F(Cli, AccuracySolvesDirectlyOnlyTheLevelsAskedForAndStopsThemAtTheTimeRatio) {
+  const std::string scene = std::string(PROGSIM_SOURCE_DIR) + "/scenes/psq_plate_buckling.json";
+  const fs::path out = dir_ / "plate";
+  const CommandResult r = run_cli("accuracy " + scene + " --out " + out.string() +
+                                  " --quiet --direct-levels 2 --direct-time-ratio 1e-9");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("lower bounds"), std::string::npos) << r.output;
+  std::ifstream csv(out / "accuracy.csv");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(csv, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 5u);  // header, 3 progressive levels, the direct finest
+  EXPECT_EQ(lines[4].rfind("direct,2,", 0), 0u) << lines[4];
+  EXPECT_EQ(lines[4].substr(lines[4].size() - 2), ",0") << lines[4];  // not finished
+  EXPECT_NE(run_cli("accuracy " + scene + " --out x --direct-levels 3").exit_code, 0);
+  EXPECT_NE(run_cli("accuracy " + scene + " --out x --direct-time-ratio -1").exit_code, 0);
 }
 
 TEST_F(Cli, RunPreviewsAProgressiveSceneThenRefinesItLevelByLevel) {

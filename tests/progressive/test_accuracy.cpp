@@ -3,6 +3,7 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "common/error.hpp"
@@ -94,4 +95,35 @@ TEST(Accuracy, RefusesScenesWithoutLevelsAndStopsWhenCancelled) {
     EXPECT_EQ(e.status(), Status::cancelled);
   }
   EXPECT_EQ(calls, 5);  // hierarchy, 3 progressive levels, the first direct level
+}
+
+TEST(Accuracy, RefusesDirectLevelsThatDoNotExistAndNegativeTimeRatios) {
+  for (const DirectSolves& direct : {DirectSolves{{3}, 0.0}, DirectSolves{{-1}, 0.0},
+                                     DirectSolves{{}, -1.0}, DirectSolves{{}, std::nan("")}}) {
+    try {
+      run_accuracy(small_plate(), 500, nullptr, nullptr, direct);
+      FAIL() << "accepted a direct level or time ratio that makes no sense";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.status(), Status::invalid_argument) << e.what();
+    }
+  }
+}
+
+TEST(Accuracy, ADirectSolveStoppedAtItsTimeLimitIsReportedUnfinished) {
+  const AccuracyReport r = run_accuracy(small_plate(), 500, nullptr, nullptr, {{2, 0}, 1e-9});
+  ASSERT_EQ(r.rows.size(), 5u);  // 3 progressive levels, then direct on levels 2 and 0
+  EXPECT_EQ(r.rows[3].level, 2);
+  EXPECT_EQ(r.rows[4].level, 0);
+  for (int k = 0; k < 3; ++k) EXPECT_TRUE(r.rows[k].finished);
+  for (int k = 3; k < 5; ++k) {
+    EXPECT_FALSE(r.rows[k].finished);
+    EXPECT_FALSE(r.rows[k].converged);
+    EXPECT_LT(r.rows[k].load_steps, r.rows[0].load_steps);
+  }
+  EXPECT_NE(accuracy_markdown(r).find(">= "), std::string::npos);
+  // Without a limit the same direct solves finish the whole load script.
+  const AccuracyReport whole = run_accuracy(small_plate(), 500, nullptr, nullptr, {{0}, 0.0});
+  ASSERT_EQ(whole.rows.size(), 4u);
+  EXPECT_TRUE(whole.rows[3].finished);
+  EXPECT_EQ(whole.rows[3].load_steps, whole.rows[0].load_steps);
 }
