@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 7
+#define PS_VERSION_MINOR 8
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -269,6 +269,8 @@ typedef struct ps_sim_def {
   int32_t solver_max_newton_iterations; /**< ≥ 1; default 100 */
   /** ≥ 0; default 0 (off): CG refinement of projected Newton steps (`progsim params`) */
   int32_t solver_max_cg_iterations;
+  /** 1 (default) or 0: line-search extrapolation of whole Newton steps (`progsim params`) */
+  int32_t solver_line_search_extrapolation;
   ps_mode mode;      /**< default PS_MODE_DYNAMIC */
   uint32_t effects;  /**< ps_effect bits; default membrane|bending|gravity */
   double gravity[3]; /**< m/s²; default (0, −9.81, 0) */
@@ -484,6 +486,9 @@ typedef struct ps_level_stats {
   /** CG iterations refining projected Newton steps (ps_sim_def::solver_max_cg_iterations > 0;
    *  never in the coarse levels' proxy solves); 0 when refinement is off. */
   int32_t cg_iterations;
+  /** Newton steps the line search lengthened beyond a whole step
+   *  (ps_sim_def::solver_line_search_extrapolation = 1); 0 when it is off. */
+  int32_t extrapolated_steps;
 } ps_level_stats;
 
 /** Statistics of `level` into *out. Levels not visited yet report zeros (NaN errors). */

@@ -137,6 +137,7 @@ PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level
     stats.obstacle_vertices = r.obstacle_vertices;
     stats.obstacle_refinement = refinement_stats(r.obstacle_refinement);
     stats.cg_iterations = r.cg_iterations;
+    stats.extrapolated_steps = r.extrapolated_steps;
     *out = stats;
   });
 }

@@ -118,6 +118,7 @@ void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
   (new_step ? r.steps : r.settles) += 1;
   r.newton_iterations += step.newton.iterations;
   r.cg_iterations += step.newton.cg_iterations;
+  r.extrapolated_steps += step.newton.extrapolated_steps;
   r.converged_solves += step.newton.stop == NewtonStop::converged;
   r.solve_seconds += step.seconds;
   r.energy = step.newton.energy;

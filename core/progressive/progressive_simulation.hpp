@@ -22,6 +22,7 @@ struct LevelRecord {
   int settles = 0;              ///< solves at a fixed time (after refinement, to equilibrium)
   int newton_iterations = 0;    ///< over steps and settles
   int cg_iterations = 0;        ///< refining projected steps (NewtonSettings::max_cg_iterations)
+  int extrapolated_steps = 0;   ///< whole steps the line search lengthened (extrapolate)
   int converged_solves = 0;     ///< steps and settles whose Newton solve met the tolerance
   double solve_seconds = 0.0;   ///< wall time of the level's steps and settles
   double refine_seconds = 0.0;  ///< wall time to build the level's start from the coarser one

@@ -300,12 +300,15 @@ void simulation(const Json& j, Scene& scene) {
 }
 
 void solver(const Json& j, Scene& scene) {
-  expect_keys(j, "solver", {"newton_tolerance", "max_newton_iterations", "max_cg_iterations"});
+  expect_keys(j, "solver",
+              {"newton_tolerance", "max_newton_iterations", "max_cg_iterations",
+               "line_search_extrapolation"});
   scene.solver.tolerance = parameter(j, "solver", "newton_tolerance", "solver");
   scene.solver.max_iterations =
       static_cast<int>(parameter(j, "solver", "max_newton_iterations", "solver"));
   scene.solver.max_cg_iterations =
       static_cast<int>(parameter(j, "solver", "max_cg_iterations", "solver"));
+  scene.solver.extrapolate = parameter(j, "solver", "line_search_extrapolation", "solver") != 0.0;
 }
 
 /// The "progressive" section: {"coarse_levels": k, "coarsening_ratio": r} or {"levels": [...]}

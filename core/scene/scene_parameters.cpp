@@ -54,17 +54,26 @@ const std::vector<Accessor>& accessors() {
   return table;
 }
 
-/// The integer parameters: one slot each.
+/// The integer parameters (a switch is 0 or 1): one slot each, read and written as doubles.
 struct IntegerAccessor {
   const char* name;
-  int& (*slot)(Scene&);
+  double (*get)(const Scene&);
+  void (*set)(Scene&, double);
 };
 
 const std::vector<IntegerAccessor>& integer_accessors() {
   static const std::vector<IntegerAccessor> table = {
-      {"simulation.output_every", [](Scene& s) -> int& { return s.output_every; }},
-      {"solver.max_newton_iterations", [](Scene& s) -> int& { return s.solver.max_iterations; }},
-      {"solver.max_cg_iterations", [](Scene& s) -> int& { return s.solver.max_cg_iterations; }},
+      {"simulation.output_every", [](const Scene& s) { return double(s.output_every); },
+       [](Scene& s, double v) { s.output_every = int(v); }},
+      {"solver.max_newton_iterations",
+       [](const Scene& s) { return double(s.solver.max_iterations); },
+       [](Scene& s, double v) { s.solver.max_iterations = int(v); }},
+      {"solver.max_cg_iterations",
+       [](const Scene& s) { return double(s.solver.max_cg_iterations); },
+       [](Scene& s, double v) { s.solver.max_cg_iterations = int(v); }},
+      {"solver.line_search_extrapolation",
+       [](const Scene& s) { return s.solver.extrapolate ? 1.0 : 0.0; },
+       [](Scene& s, double v) { s.solver.extrapolate = v != 0.0; }},
   };
   return table;
 }
@@ -111,7 +120,7 @@ void check_value(const std::string& name, double value) {
 void set_scene_parameter(Scene& scene, const std::string& name, double value) {
   if (const IntegerAccessor* a = integer_accessor(name)) {
     check_value(name, value);
-    a->slot(scene) = static_cast<int>(value);
+    a->set(scene, value);
     return;
   }
   for (const Accessor& a : accessors())
@@ -124,8 +133,8 @@ void set_scene_parameter(Scene& scene, const std::string& name, double value) {
 }
 
 double scene_parameter(const Scene& scene, const std::string& name) {
+  if (const IntegerAccessor* a = integer_accessor(name)) return a->get(scene);
   Scene& mutable_scene = const_cast<Scene&>(scene);  // slots are only read below
-  if (const IntegerAccessor* a = integer_accessor(name)) return a->slot(mutable_scene);
   for (const Accessor& a : accessors())
     if (name == a.name) {
       const std::vector<double*> slots = a.slots(mutable_scene);

@@ -203,6 +203,11 @@ static void test_misuse(void) {
   CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_INVALID_ARGUMENT, ps_last_error(),
               "solver.max_cg_iterations");
   ps_sim_def_init(&def);
+  CHECK(def.solver_line_search_extrapolation == 1); /* on by default */
+  def.solver_line_search_extrapolation = 2;
+  CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_INVALID_ARGUMENT, ps_last_error(),
+              "solver.line_search_extrapolation");
+  ps_sim_def_init(&def);
   const int32_t out_of_range[1] = {99};
   def.pinned_vertices = out_of_range;
   def.num_pinned_vertices = 1;
@@ -487,6 +492,33 @@ static void test_cg_refinement(void) {
   ps_sim_destroy(sim);
 }
 
+/* Newton steps the line search lengthened on the twist's coarse level over 6 preview steps,
+ * with solver.line_search_extrapolation set to `on` (1 or 0) through the ABI. */
+static int32_t extrapolated_preview_steps(double on) {
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create_from_scene_file(path_in_source("tests/data/twist_cg_refined.json"), &sim) ==
+        PS_OK);
+  if (!sim) return -1;
+  double value = -1.0;
+  CHECK(ps_sim_get_param(sim, "solver.line_search_extrapolation", &value) == PS_OK && value == 1.0);
+  CHECK(ps_sim_set_param(sim, "solver.line_search_extrapolation", on) == PS_OK);
+  CHECK_ERROR(ps_sim_set_param(sim, "solver.line_search_extrapolation", 0.5),
+              PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),
+              "solver.line_search_extrapolation");
+  ps_level_stats stats;
+  CHECK(ps_sim_step_preview(sim, 6) == PS_OK);
+  CHECK(ps_sim_get_level_stats(sim, 0, &stats) == PS_OK);
+  ps_sim_destroy(sim);
+  return stats.extrapolated_steps;
+}
+
+/* solver.line_search_extrapolation through the ABI: on by default, where the twist's coarse
+ * steps are lengthened; off, none is. */
+static void test_extrapolation_switch(void) {
+  CHECK(extrapolated_preview_steps(1.0) > 0);
+  CHECK(extrapolated_preview_steps(0.0) == 0);
+}
+
 /* The accuracy-vs-time numbers through the ABI, on the bundled plate-buckling scene. */
 static void test_accuracy(void) {
   ps_accuracy* accuracy = NULL;
@@ -553,6 +585,7 @@ int main(int argc, char** argv) {
   test_progressive();
   test_progressive_obstacle();
   test_cg_refinement();
+  test_extrapolation_switch();
   test_accuracy();
   if (failures)
     fprintf(stderr, "%d checks failed\n", failures);

@@ -80,6 +80,11 @@ TEST(SceneJson, ReadsTheSolverSection) {
   expect_scene_error(scene_text("", R"(, "solver": {"max_cg_iterations": -1})"),
                      "solver.max_cg_iterations");
   expect_scene_error(scene_text("", R"(, "solver": {"max_cg_iterations": 1.5})"), "whole number");
+  EXPECT_TRUE(defaults.solver.extrapolate);  // line-search extrapolation is on by default
+  EXPECT_FALSE(parse_scene(scene_text("", R"(, "solver": {"line_search_extrapolation": 0})"), ".")
+                   .solver.extrapolate);
+  expect_scene_error(scene_text("", R"(, "solver": {"line_search_extrapolation": 2})"),
+                     "solver.line_search_extrapolation");
 }
 
 TEST(SceneJson, ShellMaterialDefaultsAgreeWithTheParameterTable) {

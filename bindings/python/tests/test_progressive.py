@@ -110,6 +110,33 @@ def test_cg_refinement_counts_only_on_the_finest_level(hanging):
         progsim.Simulation(hanging.hierarchy, max_cg_iterations=-1)
 
 
+def _extrapolated_preview_steps(on):
+    """Newton steps the line search lengthened on the twist's coarse level over 6 previews."""
+    scene = Path(__file__).resolve().parents[3] / "tests" / "data" / "twist_cg_refined.json"
+    with progsim.Simulation.from_scene_file(scene) as sim:
+        assert sim.get_param("solver.line_search_extrapolation") == 1  # on by default
+        sim.set_param("solver.line_search_extrapolation", on)
+        sim.step_preview(6)
+        return sim.level_stats(0).extrapolated_steps
+
+
+def test_line_search_extrapolation_switch(hanging):
+    """solver.line_search_extrapolation: on, some of the twist's coarse steps are lengthened;
+    off, none; the constructor takes it and refuses values other than 0 and 1."""
+    assert _extrapolated_preview_steps(1) > 0
+    assert _extrapolated_preview_steps(0) == 0
+    with progsim.Simulation(
+        hanging.hierarchy,
+        mode="quasistatic",
+        time_step=1.0,
+        pinned=TOP_ROW,
+        line_search_extrapolation=False,
+    ) as sim:
+        assert sim.get_param("solver.line_search_extrapolation") == 0
+    with pytest.raises(progsim.InvalidArgumentError, match="line_search_extrapolation"):
+        progsim.Simulation(hanging.hierarchy, line_search_extrapolation=2)
+
+
 def test_pins_must_be_the_hierarchys(hanging):
     with pytest.raises(progsim.InvalidArgumentError, match="pinned_vertices"):
         progsim.Simulation(

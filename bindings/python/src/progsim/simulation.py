@@ -136,6 +136,8 @@ class LevelStats:
     #: CG iterations refining projected Newton steps (``max_cg_iterations`` > 0; never in the
     #: coarse levels' proxy solves)
     cg_iterations: int
+    #: Newton steps the line search lengthened beyond a whole step (``line_search_extrapolation``)
+    extrapolated_steps: int
 
 
 def _effect_bit(name: str) -> int:
@@ -202,6 +204,7 @@ class Simulation(NativeObject):
         newton_tolerance: Optional[float] = None,
         max_newton_iterations: Optional[int] = None,
         max_cg_iterations: Optional[int] = None,
+        line_search_extrapolation: Optional[bool] = None,
         mode: str = "dynamic",
         effects: Optional[Iterable[str]] = None,
         gravity: Optional[Sequence[float]] = None,
@@ -227,6 +230,9 @@ class Simulation(NativeObject):
             max_cg_iterations: >= 0; default 0 (off). CG iterations refining each projected
                 Newton step against the exact Hessian (faster on soft twisting cloth, slower on
                 stiff shells; see ``bench_newton_refinement``).
+            line_search_extrapolation: default True. Lengthens whole Newton steps whose energy
+                fell much more than predicted (doubling the step while the energy falls and
+                CCD allows); False for comparison runs.
             mode: ``"dynamic"`` (implicit Euler) or ``"quasistatic"`` (energy minimisation
                 per load step).
             effects: names among ``membrane``, ``bending``, ``gravity``, ``pressure``,
@@ -258,6 +264,7 @@ class Simulation(NativeObject):
             "newton_tolerance": newton_tolerance,
             "max_newton_iterations": max_newton_iterations,
             "max_cg_iterations": max_cg_iterations,
+            "line_search_extrapolation": line_search_extrapolation,
         }
         for keyword, value in values.items():
             if value is None:
@@ -664,6 +671,7 @@ class Simulation(NativeObject):
             obstacle_vertices=int(out.obstacle_vertices),
             obstacle_refinement=RefinementStats._from_native(out.obstacle_refinement),
             cg_iterations=int(out.cg_iterations),
+            extrapolated_steps=int(out.extrapolated_steps),
         )
 
     def __repr__(self) -> str:

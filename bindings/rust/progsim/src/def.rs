@@ -274,6 +274,10 @@ pub struct SimulationDef {
     /// default 0 = off (`solver.max_cg_iterations`). Faster on soft twisting cloth, slower
     /// on stiff shells; never used in the coarse levels' proxy solves.
     pub max_cg_iterations: i32,
+    /// Lengthen whole Newton steps whose energy fell much more than predicted, doubling the
+    /// step while the energy falls and CCD allows; default true
+    /// (`solver.line_search_extrapolation`). False for comparison runs.
+    pub line_search_extrapolation: bool,
     /// How steps advance; default [`Mode::Dynamic`].
     pub mode: Mode,
     /// Enabled effects; default membrane, bending and gravity.
@@ -316,6 +320,7 @@ impl Default for SimulationDef {
             newton_tolerance: raw.solver_newton_tolerance,
             max_newton_iterations: raw.solver_max_newton_iterations,
             max_cg_iterations: raw.solver_max_cg_iterations,
+            line_search_extrapolation: raw.solver_line_search_extrapolation != 0,
             mode: Mode::from_raw(raw.mode).unwrap_or_default(),
             effects: Effects::from_bits_retain(raw.effects),
             gravity: raw.gravity,
@@ -347,6 +352,7 @@ impl SimulationDef {
         raw.solver_newton_tolerance = self.newton_tolerance;
         raw.solver_max_newton_iterations = self.max_newton_iterations;
         raw.solver_max_cg_iterations = self.max_cg_iterations;
+        raw.solver_line_search_extrapolation = i32::from(self.line_search_extrapolation);
         raw.mode = self.mode.to_raw();
         raw.effects = self.effects.bits();
         raw.gravity = self.gravity;
@@ -436,6 +442,9 @@ pub struct LevelStats {
     /// CG iterations refining projected Newton steps ([`SimulationDef::max_cg_iterations`]
     /// > 0; never in the coarse levels' proxy solves); 0 when refinement is off.
     pub cg_iterations: usize,
+    /// Newton steps the line search lengthened beyond a whole step
+    /// ([`SimulationDef::line_search_extrapolation`]); 0 when it is off.
+    pub extrapolated_steps: usize,
 }
 
 /// How a level's start was built from the coarser level by safe refinement (PSQ §4.4); all
@@ -504,6 +513,7 @@ impl From<sys::ps_level_stats> for LevelStats {
             obstacle_vertices: crate::count_from(raw.obstacle_vertices),
             obstacle_refinement: RefinementStats::from(raw.obstacle_refinement),
             cg_iterations: crate::count_from(raw.cg_iterations),
+            extrapolated_steps: crate::count_from(raw.extrapolated_steps),
         }
     }
 }
@@ -523,6 +533,7 @@ mod tests {
         assert_eq!(def.newton_tolerance, 1e-5);
         assert_eq!(def.max_newton_iterations, 100);
         assert_eq!(def.max_cg_iterations, 0);
+        assert!(def.line_search_extrapolation);
         assert_eq!(def.mode, Mode::Dynamic);
         assert_eq!(def.effects, Effect::Membrane | Effect::Bending | Effect::Gravity);
         assert_eq!(def.gravity, [0.0, -9.81, 0.0]);

@@ -42,6 +42,27 @@ fn cg_refinement_counts_only_on_the_finest_level() {
     assert!(fine.newton_iterations > 0 && fine.cg_iterations > 0);
 }
 
+/// Newton steps the line search lengthened on the twist's coarse level over 6 preview steps,
+/// with `solver.line_search_extrapolation` set to `on`.
+fn extrapolated_preview_steps(on: f64) -> usize {
+    let mut sim =
+        Simulation::from_scene_file(repo_path("tests/data/twist_cg_refined.json")).unwrap();
+    assert_eq!(sim.param("solver.line_search_extrapolation").unwrap(), 1.0); // on by default
+    sim.set_param("solver.line_search_extrapolation", on).unwrap();
+    sim.step_preview(6).unwrap();
+    sim.level_stats(0).unwrap().extrapolated_steps
+}
+
+#[test]
+fn line_search_extrapolation_can_be_switched_off() {
+    assert!(extrapolated_preview_steps(1.0) > 0);
+    assert_eq!(extrapolated_preview_steps(0.0), 0);
+    let hierarchy = Hierarchy::from_file(square_cloth()).unwrap();
+    let def = SimulationDef { line_search_extrapolation: false, ..SimulationDef::default() };
+    let sim = Simulation::new(&hierarchy, &def).unwrap();
+    assert_eq!(sim.param("solver.line_search_extrapolation"), Ok(0.0));
+}
+
 #[test]
 fn scene_file_simulation_owns_its_hierarchy() {
     let mut sim = Simulation::from_scene_file(repo_path("scenes/hanging_cloth.json")).unwrap();
