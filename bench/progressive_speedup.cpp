@@ -62,9 +62,7 @@ bool report_phase(void*, double fraction, const char* phase) {
 /// The direct solves of a run: every level, or with a time ratio the finest alone.
 DirectSolves direct_solves(const Scene& scene, double time_ratio) {
   if (time_ratio == 0.0) return {};
-  const ProgressiveSettings& p = scene.progressive;
-  const int finest = p.level_vertices.empty() ? p.coarse_levels : int(p.level_vertices.size());
-  return {{finest}, time_ratio};
+  return {{scene.progressive.num_coarse_levels()}, time_ratio};
 }
 
 }  // namespace

@@ -106,8 +106,12 @@ struct ProgressiveSettings {
   /// bodies (a cloth dropped on a sphere). On every level and in the direct baseline alike.
   bool proximal = false;
 
+  /// Levels below the scene's mesh that the settings ask for (the finest level's index).
+  int num_coarse_levels() const {
+    return level_vertices.empty() ? coarse_levels : static_cast<int>(level_vertices.size());
+  }
   /// True when the scene asks for more than one level.
-  bool enabled() const { return coarse_levels > 0 || !level_vertices.empty(); }
+  bool enabled() const { return num_coarse_levels() > 0; }
 };
 
 /// Everything needed to run a simulation.
