@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_main.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
 #include "sim/direct_simulation.hpp"
@@ -100,9 +101,7 @@ Scene elastics_only(Scene scene) {
   return scene;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   const std::string scene_path =
       argc > 1 ? argv[1] : PROGSIM_SOURCE_DIR "/scenes/psq_cloth_on_sphere.json";
   const std::string csv_path = argc > 2 ? argv[2] : "bent_sheet_energy.csv";
@@ -120,7 +119,7 @@ int main(int argc, char** argv) {
   for (int l = 0; l <= finest; ++l)
     levels.push_back(std::make_unique<DirectSimulation>(scene, SimulationLevel{hierarchy, l, {}}));
   const Problem& fine_problem = levels[finest]->problem();
-  std::ofstream csv(csv_path);
+  std::ofstream csv = bench::open_csv(csv_path);
   csv << "scene,radius,model,level,vertices,membrane_J,bending_J\n";
   std::printf(
       "%s: k κ² A is the continuum bending energy; membrane above the finest mesh's is "
@@ -151,4 +150,11 @@ int main(int argc, char** argv) {
   }
   std::printf("CSV: %s\n", csv_path.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main(argc, argv, "bench_bent_sheet_energy [scene.json] [csv_path] [R ...]",
+                             run);
 }

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 
+#include "bench_main.hpp"
 #include "contact/contact_potential.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "sim/direct_simulation.hpp"
@@ -89,9 +90,7 @@ void print_row(std::FILE* out, const char* label, const Split& s) {
                s.other());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   const std::string csv_path = argc > 1 ? argv[1] : "contact_breakdown.csv";
   const int n = argc > 2 ? std::atoi(argv[2]) : 100;
   const int steps = argc > 3 ? std::atoi(argv[3]) : 50;
@@ -138,7 +137,7 @@ int main(int argc, char** argv) {
       "time, factorization = %.1f%%\n",
       100.0 * contact_share, 100.0 * all.factorization / all.total);
 
-  std::ofstream csv(csv_path);
+  std::ofstream csv = bench::open_csv(csv_path);
   csv << "step,seconds,newton_iterations,broad_phase,ccd,barrier,friction,factorization,"
          "other,candidate_pairs,active_pairs\n";
   for (std::size_t s = 0; s < per_step.size(); ++s) {
@@ -151,4 +150,11 @@ int main(int argc, char** argv) {
       << '\n';
   std::printf("wrote %s\n", csv_path.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main(argc, argv, "bench_contact_breakdown [csv_path] [grid_n] [steps]",
+                             run);
 }

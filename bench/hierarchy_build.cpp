@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_main.hpp"
 #include "common/timer.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
@@ -93,14 +94,12 @@ bool measure_in_child(const std::string& name, Row& row) {
   return got == static_cast<ssize_t>(sizeof row) && WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   const std::string csv_path = argc > 1 ? argv[1] : "hierarchy_build.csv";
   std::vector<std::string> meshes = {"sheet_101x101", "sphere_40962", "sheet_224x224",
                                      "sheet_317x317"};
   for (int i = 2; i < argc; ++i) meshes.push_back(argv[i]);
-  std::ofstream csv(csv_path);
+  std::ofstream csv = bench::open_csv(csv_path);
   csv << "mesh,vertices,levels,coarsest_vertices,build_seconds,peak_mib,"
          "expansion_batches_coarsest,prolongation_vertices_per_second\n";
   std::printf("%-26s %8s %6s %8s %9s %9s %8s %14s\n", "mesh", "vertices", "levels", "coarsest",
@@ -120,4 +119,12 @@ int main(int argc, char** argv) {
   }
   std::printf("wrote %s\n", csv_path.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main(
+      argc, argv,
+      "bench_hierarchy_build [csv_path] [mesh.off ...]   (extra meshes are added as rows)", run);
 }

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 
+#include "bench_main.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "sim/direct_simulation.hpp"
 
@@ -58,13 +59,11 @@ Row measure(int n, int threads, int steps) {
   return row;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   const std::string csv_path = argc > 1 ? argv[1] : "newton_breakdown.csv";
   const int steps = argc > 2 ? std::atoi(argv[2]) : 3;
   const int max_grid = argc > 3 ? std::atoi(argv[3]) : 200;
-  std::ofstream csv(csv_path);
+  std::ofstream csv = bench::open_csv(csv_path);
   csv << "vertices,threads,newton_iterations,assembly_ms,factorization_ms,solve_ms,"
          "line_search_ms,assembly_plus_line_search_over_factorization,step_ms\n";
   std::printf("%9s %7s %6s %12s %14s %9s %14s %9s %9s\n", "vertices", "threads", "iters",
@@ -86,4 +85,11 @@ int main(int argc, char** argv) {
   }
   std::printf("wrote %s\n", csv_path.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main(argc, argv,
+                             "bench_newton_breakdown [csv_path] [steps_per_case] [max_grid]", run);
 }

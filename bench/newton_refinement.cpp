@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_main.hpp"
 #include "common/timer.hpp"
 #include "scaled_scene.hpp"
 #include "sim/direct_simulation.hpp"
@@ -60,15 +61,13 @@ Run solve_directly(Scene scene, const Variant& variant) {
   return run;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   const std::string scene_path = argc > 1 ? argv[1] : PROGSIM_SOURCE_DIR "/scenes/psq_twist.json";
   const std::string csv_path = argc > 2 ? argv[2] : "newton_refinement.csv";
   std::vector<double> factors;
   for (int k = 3; k < argc; ++k) factors.push_back(std::stod(argv[k]));
   if (factors.empty()) factors = {1.0, 2.0};
-  std::ofstream csv(csv_path);
+  std::ofstream csv = bench::open_csv(csv_path);
   csv << "scene,vertices,steps,method,newton_iterations,cg_iterations,extrapolated_steps,"
          "converged_steps,seconds,final_energy,seconds_over_default\n";
   std::printf("%9s %6s %12s %8s %8s %8s %10s %9s %12s %8s\n", "vertices", "steps", "method",
@@ -96,4 +95,11 @@ int main(int argc, char** argv) {
   }
   std::printf("CSV: %s\n", csv_path.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main(argc, argv,
+                             "bench_newton_refinement [scene.json] [csv_path] [factor ...]", run);
 }

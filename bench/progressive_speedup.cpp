@@ -18,9 +18,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "bench_main.hpp"
 #include "progressive/accuracy.hpp"
 #include "scaled_scene.hpp"
 
@@ -41,8 +43,7 @@ std::vector<ProxyHessian> hessians(const std::string& which) {
   if (which == "level") return {ProxyHessian::level};
   if (which == "galerkin") return {ProxyHessian::galerkin};
   if (which == "both") return {ProxyHessian::level, ProxyHessian::galerkin};
-  std::fprintf(stderr, "unknown preconditioner '%s' (level, galerkin or both)\n", which.c_str());
-  std::exit(2);
+  throw std::invalid_argument("unknown preconditioner '" + which + "' (level, galerkin or both)");
 }
 
 /// The row of `method` on `level`; a direct row the run did not make has NaN error.
@@ -65,15 +66,15 @@ DirectSolves direct_solves(const Scene& scene, double time_ratio) {
   return {{scene.progressive.num_coarse_levels()}, time_ratio};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   const std::string ratio_flag = "--direct-time-ratio=";
   double time_ratio = 0.0;
   std::vector<std::string> args;
   for (int k = 1; k < argc; ++k)
     if (std::string(argv[k]).rfind(ratio_flag, 0) == 0)
       time_ratio = std::stod(argv[k] + ratio_flag.size());
+    else if (argv[k][0] == '-')
+      throw std::invalid_argument(std::string("unknown option ") + argv[k]);
     else
       args.push_back(argv[k]);
   const std::string scene_path =
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
   std::vector<double> factors;
   for (std::size_t k = 3; k < args.size(); ++k) factors.push_back(std::stod(args[k]));
   if (factors.empty()) factors = {2.0, 4.0};
-  std::ofstream csv(csv_path);
+  std::ofstream csv = bench::open_csv(csv_path);
   csv << "scene,vertices,levels,coarsest,proxy_hessian,preview_seconds,direct_finest_seconds,"
          "preview_speedup,progressive_seconds,progressive_speedup,refine_share,"
          "preview_error_max,direct_coarse_error_max,direct_finest_error_max,direct_finished,"
@@ -123,4 +124,14 @@ int main(int argc, char** argv) {
     }
   std::printf("CSV: %s\n", csv_path.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main(
+      argc, argv,
+      "bench_progressive_speedup [--direct-time-ratio=R] [scene.json] [csv_path] "
+      "[level|galerkin|both] [factor ...]",
+      run);
 }

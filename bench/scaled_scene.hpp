@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "common/error.hpp"
 #include "scene/scene_json.hpp"
 
 namespace progsim {
@@ -14,6 +15,7 @@ namespace progsim {
 /// multiplied by `factor`.
 inline Scene scaled_scene(const std::string& path, double factor) {
   std::ifstream file(path);
+  if (!file) fail(Status::io_error, "cannot read scene file '" + path + "'");
   std::stringstream text;
   text << file.rdbuf();
   const std::string json = text.str();

@@ -529,7 +529,8 @@ typedef struct ps_accuracy_row {
 /**
  * Runs the scene file (which needs a "progressive" section with coarse levels) progressively
  * and directly on every level, as `progsim accuracy` does. Long: progress (nullable) is called
- * with done/100 and a phase such as "progressive level 1" or "direct level 0".
+ * with done/100 and a phase such as "progressive level 1" or "direct level 0, load step 3 of
+ * 20" (when a phase begins and after each load step of the preview and the direct solves).
  * @param out receives the results; caller owns, destroy with ps_accuracy_destroy().
  * Errors (message in ps_last_error()): PS_ERROR_IO, PS_ERROR_INVALID_SCENE (no coarse levels
  * among others), PS_ERROR_UNSUPPORTED (a dynamic scene), PS_ERROR_INTERSECTING,

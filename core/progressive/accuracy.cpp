@@ -23,6 +23,23 @@ void notify(AccuracyProgress progress, void* user, double fraction, const std::s
     fail(Status::cancelled, "accuracy run cancelled during " + phase);
 }
 
+/// One phase of the run ("progressive level 0", "direct level 2", …), spanning [start, start +
+/// width) of the whole run's progress.
+struct Phase {
+  AccuracyProgress progress;
+  void* user;
+  std::string name;
+  double start, width;
+  /// Reports the phase begun; throws Error(cancelled) when the callback says stop.
+  void begin() const { notify(progress, user, start, name); }
+  /// Reports `done` of the load script's `total` steps solved, so that a direct solve that takes
+  /// hours is not silent; throws Error(cancelled) when the callback says stop.
+  void load_step(int done, int total) const {
+    notify(progress, user, start + width * done / total,
+           name + ", load step " + std::to_string(done) + " of " + std::to_string(total));
+  }
+};
+
 /// The row's errors: x against the reference (PSQ accuracy, DESIGN.md metrics).
 void set_errors(AccuracyRow& row, const Positions& x, const Positions& reference, double diagonal) {
   const StateDistance d = state_distance(x, reference, diagonal);
@@ -34,7 +51,8 @@ void set_errors(AccuracyRow& row, const Positions& x, const Positions& reference
 /// most `max_settles` more solves, as the progressive levels), prolonged to the finest mesh.
 /// Stops unfinished once it has taken longer than `time_limit` seconds (0: no limit).
 AccuracyRow direct_row(const Scene& scene, const ProgressiveSimulation& psq, int level,
-                       int max_settles, double time_limit, Positions& prolonged) {
+                       int max_settles, double time_limit, const Phase& phase,
+                       Positions& prolonged) {
   AccuracyRow row;
   row.method = Method::direct;
   row.level = level;
@@ -46,9 +64,10 @@ AccuracyRow direct_row(const Scene& scene, const ProgressiveSimulation& psq, int
   };
   DirectSimulation sim(scene, SimulationLevel{psq.shared_hierarchy(), level, {}});
   StepRecord last;
-  for (; row.load_steps < scene.num_steps() && may_go_on(); ++row.load_steps) {
+  while (row.load_steps < scene.num_steps() && may_go_on()) {
     last = sim.step();
     row.newton_iterations += last.newton.iterations;
+    phase.load_step(++row.load_steps, scene.num_steps());
   }
   for (int k = 0; k < max_settles && !last.equilibrium && may_go_on(); ++k) {
     last = sim.settle();
@@ -196,9 +215,14 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
   Timer total;
   double excluded = 0.0;  // time the method does not need (checks, prolongation for errors)
   for (int level = 0;; ++level) {
-    notify(progress, user, level / units, "progressive level " + std::to_string(level));
+    const Phase phase{progress, user, "progressive level " + std::to_string(level), level / units,
+                      1.0 / units};
+    phase.begin();
     if (level == 0)
-      for (int s = 0; s < scene.num_steps(); ++s) psq.step();
+      for (int s = 0; s < scene.num_steps(); ++s) {
+        psq.step();
+        phase.load_step(s + 1, scene.num_steps());
+      }
     else
       psq.refine();
     psq.settle_to_equilibrium(max_settles);
@@ -220,9 +244,12 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
   const double time_limit = direct.time_ratio * report.rows.back().seconds;
   for (std::size_t k = 0; k < direct_order.size(); ++k) {
     const int level = direct_order[k];
-    notify(progress, user, (finest + 1 + k) / units, "direct level " + std::to_string(level));
+    const Phase phase{progress, user, "direct level " + std::to_string(level),
+                      (finest + 1.0 + k) / units, 1.0 / units};
+    phase.begin();
     prolonged.emplace_back();
-    report.rows.push_back(direct_row(scene, psq, level, max_settles, time_limit, prolonged.back()));
+    report.rows.push_back(
+        direct_row(scene, psq, level, max_settles, time_limit, phase, prolonged.back()));
   }
   const Positions reference = prolonged[finest];
   report.diagonal = bounding_box_diagonal(hierarchy->levels.back().rest.vertices);

@@ -42,8 +42,10 @@ struct AccuracyReport {
   std::vector<AccuracyRow> rows;
 };
 
-/// Progress of a long run: the phase ("progressive level 1", "direct level 0", …) and the
-/// fraction of the whole run done. Returning false cancels (Error(cancelled)).
+/// Progress of a long run: the fraction of the whole run done and the phase, reported when a
+/// phase begins ("progressive level 1", "direct level 0") and after each load step of the
+/// preview and of the direct solves ("direct level 2, load step 3 of 20"). Returning false
+/// cancels (Error(cancelled)).
 using AccuracyProgress = bool (*)(void* user, double fraction, const char* phase);
 
 /// Which levels an accuracy run solves directly, and how long each direct solve may take. On

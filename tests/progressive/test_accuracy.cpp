@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "common/error.hpp"
 #include "progressive/accuracy.hpp"
@@ -74,7 +76,7 @@ TEST(Accuracy, WritesCsvMarkdownAndPngPlots) {
   fs::remove_all(dir);
 }
 
-TEST(Accuracy, RefusesScenesWithoutLevelsAndStopsWhenCancelled) {
+TEST(Accuracy, RefusesScenesWithoutLevels) {
   Scene direct_only = small_plate();
   direct_only.progressive = {};
   try {
@@ -83,18 +85,37 @@ TEST(Accuracy, RefusesScenesWithoutLevelsAndStopsWhenCancelled) {
   } catch (const Error& e) {
     EXPECT_EQ(e.status(), Status::invalid_scene);
   }
-  int calls = 0;
-  auto stop_at_direct = [](void* user, double, const char* phase) {
-    ++*static_cast<int*>(user);
-    return std::string(phase).rfind("direct", 0) != 0;
+}
+
+TEST(Accuracy, ReportsEveryPhaseAndLoadStepAndStopsWhenCancelledInsideASolve) {
+  struct Seen {
+    std::vector<std::string> phases;
+    std::vector<double> fractions;
+  } seen;
+  auto stop_in_direct_solve = [](void* user, double fraction, const char* phase) {
+    auto& s = *static_cast<Seen*>(user);
+    s.phases.push_back(phase);
+    s.fractions.push_back(fraction);
+    return s.phases.back().rfind("direct level 0, load step 1 ", 0) != 0;
   };
   try {
-    run_accuracy(small_plate(), 500, stop_at_direct, &calls);
+    run_accuracy(small_plate(), 500, stop_in_direct_solve, &seen);
     FAIL() << "cancelling did not stop the run";
   } catch (const Error& e) {
     EXPECT_EQ(e.status(), Status::cancelled);
   }
-  EXPECT_EQ(calls, 5);  // hierarchy, 3 progressive levels, the first direct level
+  const std::string of = " of " + std::to_string(small_plate().num_steps());
+  std::vector<std::string> expected = {"hierarchy", "progressive level 0"};
+  for (int s = 1; s <= small_plate().num_steps(); ++s)
+    expected.push_back("progressive level 0, load step " + std::to_string(s) + of);
+  for (const char* p : {"progressive level 1", "progressive level 2", "direct level 0"})
+    expected.push_back(p);
+  expected.push_back("direct level 0, load step 1" + of);  // the last: nothing after cancelling
+  EXPECT_EQ(seen.phases, expected);
+  for (std::size_t k = 0; k < seen.fractions.size(); ++k) {
+    EXPECT_GE(seen.fractions[k], k ? seen.fractions[k - 1] : 0.0) << seen.phases[k];
+    EXPECT_LT(seen.fractions[k], 1.0) << seen.phases[k];
+  }
 }
 
 TEST(Accuracy, RefusesDirectLevelsThatDoNotExistAndNegativeTimeRatios) {
