@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 8
+#define PS_VERSION_MINOR 9
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -524,20 +524,55 @@ typedef struct ps_accuracy_row {
   /** 1 if the level ended at equilibrium (as ps_level_stats::equilibrium), progressive or direct.
    */
   int32_t converged;
+  /** Load steps of the scene's script solved: all of them, except in a direct solve stopped by
+   *  ps_accuracy_def::direct_time_ratio. */
+  int32_t load_steps;
+  /** 0 for a direct solve stopped by ps_accuracy_def::direct_time_ratio: its `seconds` is then
+   *  only a lower bound of what the whole solve takes, and speed-ups against it are lower
+   *  bounds too. 1 otherwise. */
+  int32_t finished;
 } ps_accuracy_row;
+
+/** Which levels an accuracy run solves directly, for how long, and its progress reporting.
+ *  Fill with ps_accuracy_def_init(), then change fields. */
+typedef struct ps_accuracy_def {
+  /** Levels solved directly, in this order (each in 0 to the finest). Nullable: NULL with
+   *  num_direct_levels = 0 (the default) solves every level, coarsest first. Borrowed during
+   *  the run call only. */
+  const int32_t* direct_levels;
+  int32_t num_direct_levels; /**< entries in direct_levels (0 to 64); default 0 */
+  /** A direct solve stops after the load step (or settling solve) that takes it past this many
+   *  times the progressive time to the converged finest level; its row then has finished = 0.
+   *  On large scenes the direct finest solve can take hours; a limit still measures a lower
+   *  bound of the speed-up. 0 (the default): no limit; negative or NaN:
+   *  PS_ERROR_INVALID_ARGUMENT. */
+  double direct_time_ratio;
+  /** Nullable (default): called with done/100 and a phase such as "progressive level 1" or
+   *  "direct level 0, load step 3 of 20": when a phase begins and after each load step of the
+   *  preview and the direct solves (see ps_progress_fn). */
+  ps_progress_fn progress;
+  void* progress_user_data; /**< passed back to progress unchanged; default NULL */
+  int32_t internal_cookie;  /**< set by ps_accuracy_def_init(); do not touch */
+} ps_accuracy_def;
+
+/** Fills def with defaults (every level solved directly, no time limit, no progress). def must
+ *  not be NULL. */
+PS_API void ps_accuracy_def_init(ps_accuracy_def* def);
 
 /**
  * Runs the scene file (which needs a "progressive" section with coarse levels) progressively
- * and directly on every level, as `progsim accuracy` does. Long: progress (nullable) is called
- * with done/100 and a phase such as "progressive level 1" or "direct level 0, load step 3 of
- * 20" (when a phase begins and after each load step of the preview and the direct solves).
+ * and directly on the levels def names (every level by default), as `progsim accuracy` does.
+ * Long: minutes to hours on large meshes; see ps_accuracy_def::progress and
+ * ps_accuracy_def::direct_time_ratio.
+ * @param def Nullable (defaults). Borrowed during the call.
  * @param out receives the results; caller owns, destroy with ps_accuracy_destroy().
  * Errors (message in ps_last_error()): PS_ERROR_IO, PS_ERROR_INVALID_SCENE (no coarse levels
- * among others), PS_ERROR_UNSUPPORTED (a dynamic scene), PS_ERROR_INTERSECTING,
- * PS_ERROR_CANCELLED, PS_ERROR_NULL_ARGUMENT.
+ * among others), PS_ERROR_UNSUPPORTED (a dynamic scene), PS_ERROR_INVALID_ARGUMENT (a direct
+ * level that does not exist, a negative time ratio), PS_ERROR_UNINITIALIZED_DEF,
+ * PS_ERROR_INTERSECTING, PS_ERROR_CANCELLED, PS_ERROR_NULL_ARGUMENT.
  */
-PS_API int32_t ps_accuracy_run_scene_file(const char* path, ps_progress_fn progress,
-                                          void* user_data, ps_accuracy** out);
+PS_API int32_t ps_accuracy_run_scene_file(const char* path, const ps_accuracy_def* def,
+                                          ps_accuracy** out);
 
 /** Destroys the results. Nullable (no-op). */
 PS_API void ps_accuracy_destroy(ps_accuracy* accuracy);

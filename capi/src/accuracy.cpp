@@ -2,6 +2,7 @@
 #include "progressive/accuracy.hpp"
 
 #include <cmath>
+#include <string>
 
 #include "api_guard.hpp"
 #include "percent_progress.hpp"
@@ -16,8 +17,20 @@ struct ps_accuracy {
 namespace progsim::capi {
 namespace {
 
+constexpr int32_t kAccuracyCookie = 0x50534144;  // "PSAD"
+
 ps_method method_of(AccuracyRow::Method m) {
   return m == AccuracyRow::Method::progressive ? PS_METHOD_PROGRESSIVE : PS_METHOD_DIRECT;
+}
+
+/// The direct solves def asks for (nullable: every level, no time limit); rejects defs nobody
+/// initialised. The levels and the ratio themselves are checked by run_accuracy.
+DirectSolves direct_solves(const ps_accuracy_def* def) {
+  if (!def) return {};
+  require_initialized(def->internal_cookie, kAccuracyCookie, "ps_accuracy_def");
+  const std::vector<int32_t> levels = borrowed_array(def->direct_levels, def->num_direct_levels,
+                                                     "direct_levels", "num_direct_levels", 64);
+  return DirectSolves{{levels.begin(), levels.end()}, def->direct_time_ratio};
 }
 
 }  // namespace
@@ -28,15 +41,22 @@ using namespace progsim::capi;
 
 extern "C" {
 
-PS_API int32_t ps_accuracy_run_scene_file(const char* path, ps_progress_fn progress,
-                                          void* user_data, ps_accuracy** out) {
+PS_API void ps_accuracy_def_init(ps_accuracy_def* def) {
+  if (!def) return;
+  *def = ps_accuracy_def{};
+  def->internal_cookie = kAccuracyCookie;
+}
+
+PS_API int32_t ps_accuracy_run_scene_file(const char* path, const ps_accuracy_def* def,
+                                          ps_accuracy** out) {
   return guarded(nullptr, "ps_accuracy_run_scene_file", [&] {
     require(path, "path");
     require(out, "out");
-    PercentProgress forward{progress, user_data};
+    const DirectSolves direct = direct_solves(def);
+    PercentProgress forward{def ? def->progress : nullptr, def ? def->progress_user_data : nullptr};
     auto accuracy = std::make_unique<ps_accuracy>();
     accuracy->report = run_accuracy(load_scene_file(path), 500,
-                                    progress ? PercentProgress::call : nullptr, &forward);
+                                    forward.fn ? PercentProgress::call : nullptr, &forward, direct);
     *out = accuracy.release();
   });
 }
@@ -63,9 +83,10 @@ PS_API int32_t ps_accuracy_get_row(const ps_accuracy* accuracy, int32_t index,
       api_fail(PS_ERROR_OUT_OF_RANGE,
                "row " + std::to_string(index) + " does not exist (" + std::to_string(n) + " rows)");
     const AccuracyRow& r = accuracy->report.rows[index];
-    *out = ps_accuracy_row{
-        method_of(r.method), r.level,     r.vertices,  r.newton_iterations,  r.seconds,
-        r.refine_seconds,    r.error_rms, r.error_max, r.intersecting_pairs, r.converged ? 1 : 0};
+    *out = ps_accuracy_row{method_of(r.method), r.level,      r.vertices,
+                           r.newton_iterations, r.seconds,    r.refine_seconds,
+                           r.error_rms,         r.error_max,  r.intersecting_pairs,
+                           r.converged ? 1 : 0, r.load_steps, r.finished ? 1 : 0};
   });
 }
 

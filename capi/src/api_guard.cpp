@@ -13,6 +13,21 @@ void require(const void* pointer, const char* what) {
   if (!pointer) api_fail(PS_ERROR_NULL_ARGUMENT, std::string(what) + " is NULL");
 }
 
+void require_initialized(int32_t cookie, int32_t expected, const char* def_type) {
+  if (cookie != expected)
+    api_fail(PS_ERROR_UNINITIALIZED_DEF,
+             std::string("the ") + def_type + " was not filled by " + def_type + "_init()");
+}
+
+std::vector<int32_t> borrowed_array(const int32_t* values, int32_t count, const char* values_name,
+                                    const char* count_name, int32_t max_count) {
+  if (count < 0 || count > max_count)
+    api_fail(PS_ERROR_INVALID_ARGUMENT, std::string(count_name) + " = " + std::to_string(count) +
+                                            " must be in 0 to " + std::to_string(max_count));
+  if (count > 0) require(values, values_name);
+  return std::vector<int32_t>(values, values + count);
+}
+
 ps_status to_ps_status(Status status) {
   switch (status) {
     case Status::ok:

@@ -4,6 +4,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "common/error.hpp"
 #include "progsim.h"
@@ -26,6 +27,16 @@ class ApiError : public std::runtime_error {
 
 /// Throws ApiError(PS_ERROR_NULL_ARGUMENT) naming `what` if pointer is NULL.
 void require(const void* pointer, const char* what);
+
+/// Throws ApiError(PS_ERROR_UNINITIALIZED_DEF) unless `cookie` is `expected`, i.e. the def-struct
+/// `def_type` was filled by its `def_type`_init().
+void require_initialized(int32_t cookie, int32_t expected, const char* def_type);
+
+/// A def's borrowed array of `count` int32 entries at `values` (nullable when count is 0),
+/// copied. A count outside 0 to `max_count` is PS_ERROR_INVALID_ARGUMENT naming `count_name`;
+/// NULL values with a positive count is PS_ERROR_NULL_ARGUMENT naming `values_name`.
+std::vector<int32_t> borrowed_array(const int32_t* values, int32_t count, const char* values_name,
+                                    const char* count_name, int32_t max_count);
 
 /// The ps_status mirroring a core Status.
 ps_status to_ps_status(Status status);

@@ -51,16 +51,11 @@ std::vector<int> pinned_groups(const ps_hierarchy_def& def, std::size_t num_vert
 HierarchyOptions hierarchy_options(const ps_hierarchy_def* def, std::size_t num_vertices) {
   HierarchyOptions options;
   if (!def) return options;
-  if (def->internal_cookie != kHierarchyCookie)
-    api_fail(PS_ERROR_UNINITIALIZED_DEF,
-             "the ps_hierarchy_def was not filled by ps_hierarchy_def_init()");
-  if (def->num_coarse_levels < 0 || def->num_coarse_levels > 64)
-    api_fail(
-        PS_ERROR_INVALID_ARGUMENT,
-        "num_coarse_levels = " + std::to_string(def->num_coarse_levels) + " must be in 0 to 64");
-  if (def->num_coarse_levels > 0) require(def->coarse_vertex_counts, "coarse_vertex_counts");
-  options.coarse_vertex_counts.assign(def->coarse_vertex_counts,
-                                      def->coarse_vertex_counts + def->num_coarse_levels);
+  require_initialized(def->internal_cookie, kHierarchyCookie, "ps_hierarchy_def");
+  const std::vector<int32_t> counts =
+      borrowed_array(def->coarse_vertex_counts, def->num_coarse_levels, "coarse_vertex_counts",
+                     "num_coarse_levels", 64);
+  options.coarse_vertex_counts.assign(counts.begin(), counts.end());
   if (num_vertices > 0) options.vertex_groups = pinned_groups(*def, num_vertices);
   return options;
 }

@@ -29,8 +29,7 @@ EffectSet effects_from_bits(uint32_t bits) {
 }
 
 Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh) {
-  if (def.internal_cookie != kSimCookie)
-    api_fail(PS_ERROR_UNINITIALIZED_DEF, "the ps_sim_def was not filled by ps_sim_def_init()");
+  require_initialized(def.internal_cookie, kSimCookie, "ps_sim_def");
   Scene scene;
   scene.name = "c_api";
   scene.bodies.push_back(Body{"body", mesh, ShellMaterial{}, 0.0, 0.0});

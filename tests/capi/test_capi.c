@@ -522,7 +522,7 @@ static void test_extrapolation_switch(void) {
 /* The accuracy-vs-time numbers through the ABI, on the bundled plate-buckling scene. */
 static void test_accuracy(void) {
   ps_accuracy* accuracy = NULL;
-  CHECK(ps_accuracy_run_scene_file(path_in_source("scenes/psq_plate_buckling.json"), NULL, NULL,
+  CHECK(ps_accuracy_run_scene_file(path_in_source("scenes/psq_plate_buckling.json"), NULL,
                                    &accuracy) == PS_OK);
   if (!accuracy) return;
   int32_t rows = 0;
@@ -532,9 +532,11 @@ static void test_accuracy(void) {
   CHECK(row.method == PS_METHOD_PROGRESSIVE && row.level == 0 && row.seconds > 0.0);
   CHECK(row.error_max > 0.0 && row.error_max < 0.1);
   CHECK(row.intersecting_pairs == 0 && row.converged == 1);
+  CHECK(row.load_steps == 10 && row.finished == 1); /* the scene's 10 load steps */
   CHECK(ps_accuracy_get_row(accuracy, 5, &row) == PS_OK);
   CHECK(row.method == PS_METHOD_DIRECT && row.level == 2 && row.vertices == 625);
   CHECK(row.intersecting_pairs == 0 && row.converged == 1);
+  CHECK(row.load_steps == 10 && row.finished == 1);
   CHECK_ERROR(ps_accuracy_get_row(accuracy, 6, &row), PS_ERROR_OUT_OF_RANGE, ps_last_error(),
               "6 rows");
   char dir[4096];
@@ -547,9 +549,52 @@ static void test_accuracy(void) {
   if (file) fclose(file);
   ps_accuracy_destroy(accuracy);
   accuracy = NULL;
-  CHECK_ERROR(ps_accuracy_run_scene_file(path_in_source("scenes/hanging_cloth.json"), NULL, NULL,
-                                         &accuracy),
-              PS_ERROR_INVALID_SCENE, ps_last_error(), "coarse levels");
+  CHECK_ERROR(
+      ps_accuracy_run_scene_file(path_in_source("scenes/hanging_cloth.json"), NULL, &accuracy),
+      PS_ERROR_INVALID_SCENE, ps_last_error(), "coarse levels");
+  CHECK(accuracy == NULL);
+}
+
+/* ps_accuracy_def: only the levels named are solved directly, a direct solve past its time limit
+ * is reported unfinished, progress is reported, and defs that make no sense are refused. */
+static void test_accuracy_def(void) {
+  const char* plate = path_in_source("scenes/psq_plate_buckling.json");
+  const int32_t finest[1] = {2};
+  int32_t progress[2] = {0, 0};
+  ps_accuracy_def def;
+  ps_accuracy_def_init(&def);
+  def.direct_levels = finest;
+  def.num_direct_levels = 1;
+  def.direct_time_ratio = 1e-9; /* stops before the script is done */
+  def.progress = count_reports;
+  def.progress_user_data = progress;
+  ps_accuracy* accuracy = NULL;
+  CHECK(ps_accuracy_run_scene_file(plate, &def, &accuracy) == PS_OK);
+  int32_t rows = 0;
+  CHECK(accuracy && ps_accuracy_num_rows(accuracy, &rows) == PS_OK && rows == 4);
+  ps_accuracy_row row;
+  CHECK(accuracy && ps_accuracy_get_row(accuracy, 3, &row) == PS_OK);
+  CHECK(row.method == PS_METHOD_DIRECT && row.level == 2);
+  CHECK(row.finished == 0 && row.converged == 0 && row.load_steps < 10);
+  CHECK(progress[0] > 10); /* phases and the preview's 10 load steps at least */
+  ps_accuracy_destroy(accuracy);
+  ps_accuracy_def bad = def;
+  const int32_t missing[1] = {3};
+  bad.direct_levels = missing;
+  accuracy = NULL;
+  CHECK_ERROR(ps_accuracy_run_scene_file(plate, &bad, &accuracy), PS_ERROR_INVALID_ARGUMENT,
+              ps_last_error(), "direct level 3 does not exist");
+  bad = def;
+  bad.direct_time_ratio = -1.0;
+  CHECK_ERROR(ps_accuracy_run_scene_file(plate, &bad, &accuracy), PS_ERROR_INVALID_ARGUMENT,
+              ps_last_error(), "time ratio");
+  bad = def;
+  bad.direct_levels = NULL;
+  CHECK_ERROR(ps_accuracy_run_scene_file(plate, &bad, &accuracy), PS_ERROR_NULL_ARGUMENT,
+              ps_last_error(), "direct_levels");
+  memset(&bad, 0, sizeof bad);
+  CHECK_ERROR(ps_accuracy_run_scene_file(plate, &bad, &accuracy), PS_ERROR_UNINITIALIZED_DEF,
+              ps_last_error(), "ps_accuracy_def_init");
   CHECK(accuracy == NULL);
 }
 
@@ -587,6 +632,7 @@ int main(int argc, char** argv) {
   test_cg_refinement();
   test_extrapolation_switch();
   test_accuracy();
+  test_accuracy_def();
   if (failures)
     fprintf(stderr, "%d checks failed\n", failures);
   else

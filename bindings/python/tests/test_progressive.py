@@ -166,8 +166,10 @@ def test_accuracy_report(tmp_path):
         assert report.rows[0].seconds < report.rows[2].seconds
         assert all(row.vertices > 0 and row.newton_iterations > 0 for row in report.rows)
         assert all(row.intersecting_pairs == 0 and row.converged for row in report.rows)
+        assert all(row.load_steps == 10 and row.finished for row in report.rows)
         report.write(tmp_path / "plate")
     assert "progressive level 1" in phases and "direct level 2" in phases
+    assert "direct level 2, load step 10 of 10" in phases
     written = sorted(p.name for p in (tmp_path / "plate").iterdir())
     assert written == [
         "accuracy.csv",
@@ -187,3 +189,33 @@ def test_accuracy_needs_coarse_levels(tmp_path):
     )
     with pytest.raises(progsim.InvalidSceneError, match="coarse levels"):
         progsim.Accuracy(scene)
+
+
+def test_accuracy_solves_directly_only_the_levels_asked_for_within_the_time_ratio(capsys):
+    with progsim.Accuracy(
+        PLATE, direct_levels=[2, 0], direct_time_ratio=1e-9, progress=True
+    ) as report:
+        assert [(row.method, row.level) for row in report.rows][3:] == [
+            ("direct", 2),
+            ("direct", 0),
+        ]
+        for row in report.rows[3:]:
+            assert not row.finished and not row.converged and row.load_steps < 10
+        assert all(row.finished for row in report.rows[:3])
+    err = capsys.readouterr().err
+    # One bar over the whole run (relabelled per phase and load step), left at 100 %.
+    assert err.count("\n") == 1 and "100/100" in err, err
+
+
+@pytest.mark.parametrize(
+    "keywords, error, match",
+    [
+        ({"direct_levels": [3]}, progsim.InvalidArgumentError, "direct level 3 does not exist"),
+        ({"direct_time_ratio": -1.0}, progsim.InvalidArgumentError, "time ratio"),
+        ({"direct_time_ratio": "fast"}, progsim.InvalidArgumentError, "real number"),
+        ({"direct_levels": [[0]]}, progsim.InvalidArgumentError, "1-D"),
+    ],
+)
+def test_accuracy_refuses_direct_solves_that_make_no_sense(keywords, error, match):
+    with pytest.raises(error, match=match):
+        progsim.Accuracy(PLATE, **keywords)

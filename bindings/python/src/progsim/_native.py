@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import operator
 import threading
-from typing import Any, Callable, List, Optional, Sequence, Union
+from typing import Any, Callable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -132,6 +132,15 @@ def int32_value(value: Any, name: str) -> int:
     return result
 
 
+def real_value(value: Any, name: str) -> float:
+    """``value`` as a Python float, or :class:`InvalidArgumentError` (range checks are the
+    library's)."""
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise InvalidArgumentError(f"{name} must be a real number, got {value!r}") from None
+
+
 def three_floats(value: Sequence[float], name: str) -> List[float]:
     """A 3-vector as a list of 3 floats, or :class:`InvalidArgumentError`."""
     try:
@@ -187,6 +196,13 @@ def as_indices(indices: Any, name: str, shape: str, error=InvalidArgumentError) 
 def as_faces(faces: Any) -> np.ndarray:
     """``faces`` as a C-contiguous int32 (m, 3) array."""
     return as_indices(faces, "faces", "(m, 3)", error=InvalidMeshError)
+
+
+def index_buffer(values: Optional[Sequence[int]], name: str) -> Tuple[np.ndarray, "ffi.CData"]:
+    """``values`` as an int32 array and a cffi buffer over it (NULL when empty); keep both
+    alive while C borrows the buffer."""
+    array = as_indices([] if values is None else values, name, "(k,)")
+    return array, (ffi.from_buffer("int32_t[]", array) if array.size else ffi.NULL)
 
 
 def output_array(out: Optional[np.ndarray], rows: int, dtype: Any, name: str) -> np.ndarray:
@@ -260,13 +276,25 @@ class ProgressRun:
         return False
 
     def _update_bar(self, done: int, total: int, phase: str) -> None:
-        if self._bar is None or phase != self._phase or total != self._bar.total:
+        """One bar while the reports count up to the same total (a phase that only renames
+        the stage, such as each load step of an accuracy run, relabels it); a new bar when
+        the total changes or the count starts over."""
+        if self._bar is None or total != self._bar.total or done < self._bar.n:
             self.close()
             from tqdm.auto import tqdm
 
             self._bar = tqdm(total=total, desc=phase, unit="step", leave=True)
-            self._phase = phase
+        elif phase != self._phase:
+            self._bar.set_description(phase, refresh=False)
+        self._phase = phase
         self._bar.update(done - self._bar.n)
+
+    def install(self, definition: "ffi.CData") -> None:
+        """Points a def's ``progress`` and ``progress_user_data`` at this run; the handle
+        lives as long as the run does."""
+        self._handle = ffi.new_handle(self)
+        definition.progress = lib._progsim_progress
+        definition.progress_user_data = self._handle
 
     def close(self) -> None:
         """Closes the progress bar, if any."""

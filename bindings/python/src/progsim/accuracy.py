@@ -5,9 +5,16 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from typing import List, Union
+from typing import List, Optional, Sequence, Union
 
-from ._native import NativeObject, ProgressArg, ProgressRun, check_create
+from ._native import (
+    NativeObject,
+    ProgressArg,
+    ProgressRun,
+    check_create,
+    index_buffer,
+    real_value,
+)
 from ._progsim_cffi import ffi, lib
 
 __all__ = ["AccuracyRow", "Accuracy"]
@@ -32,6 +39,11 @@ class AccuracyRow:
     intersecting_pairs: int  #: face pairs crossing in the final state (CGAL exact check)
     #: the level ended at equilibrium, progressive or direct
     converged: bool
+    #: load steps of the scene's script solved (fewer in a direct solve stopped early)
+    load_steps: int
+    #: False for a direct solve stopped by ``direct_time_ratio``: its ``seconds`` (and any
+    #: speed-up against it) is then only a lower bound
+    finished: bool
 
 
 class Accuracy(NativeObject):
@@ -48,25 +60,47 @@ class Accuracy(NativeObject):
 
     _last_error_fn = staticmethod(lambda handle: lib.ps_last_error())
 
-    def __init__(self, scene_path: PathLike, *, progress: ProgressArg = False) -> None:
-        """Runs the scene (long: ``progress=True`` shows a bar per phase).
+    def __init__(
+        self,
+        scene_path: PathLike,
+        *,
+        direct_levels: Optional[Sequence[int]] = None,
+        direct_time_ratio: float = 0.0,
+        progress: ProgressArg = False,
+    ) -> None:
+        """Runs the scene (long: ``progress=True`` shows a bar per phase and load step).
+
+        Args:
+            scene_path: a scene file with a ``"progressive"`` section.
+            direct_levels: the levels solved directly, in this order (default: every level).
+            direct_time_ratio: stop each direct solve after the load step that takes it past
+                this many times the progressive time to the converged finest level (its row
+                then has ``finished=False``); 0 (default) for no limit.
+            progress: ``True`` for a tqdm bar, ``False`` for none, or a callable
+                ``(done, total, phase) -> bool`` returning True to cancel.
 
         Raises:
             ProgsimIOError: the file cannot be read.
             InvalidSceneError: a malformed scene, or one without coarse levels.
             UnsupportedError: a dynamic scene.
+            InvalidArgumentError: a direct level that does not exist, a negative time ratio.
             CancelledError: the progress callable asked to stop.
         """
         super().__init__()
         run = ProgressRun(progress)
+        definition = ffi.new("ps_accuracy_def*")
+        lib.ps_accuracy_def_init(definition)
+        levels, buffer = index_buffer(direct_levels, "direct_levels")
+        definition.direct_levels = buffer
+        definition.num_direct_levels = int(levels.size)
+        definition.direct_time_ratio = real_value(direct_time_ratio, "direct_time_ratio")
+        run.install(definition)
         out = ffi.new("ps_accuracy**")
-        handle = ffi.new_handle(run)
         try:
-            status = lib.ps_accuracy_run_scene_file(
-                os.fsencode(scene_path), lib._progsim_progress, handle, out
-            )
+            status = lib.ps_accuracy_run_scene_file(os.fsencode(scene_path), definition, out)
         finally:
             run.close()
+        del levels, buffer
         run.reraise()
         check_create(status)
         self._cdata = ffi.gc(out[0], lib.ps_accuracy_destroy)
@@ -91,6 +125,8 @@ class Accuracy(NativeObject):
             error_max=float(row.error_max),
             intersecting_pairs=int(row.intersecting_pairs),
             converged=bool(row.converged),
+            load_steps=int(row.load_steps),
+            finished=bool(row.finished),
         )
 
     def write(self, directory: PathLike) -> None:

@@ -12,11 +12,11 @@ from ._native import (
     ProgressArg,
     ProgressRun,
     as_faces,
-    as_indices,
     as_vertices,
     check_create,
     int32_value,
     fetch_rows,
+    index_buffer,
     output_array,
 )
 from ._progsim_cffi import ffi, lib
@@ -29,12 +29,6 @@ __all__ = ["Hierarchy"]
 PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 
 
-def _index_buffer(values: Optional[Sequence[int]], name: str):
-    """``values`` as an int32 array and a cffi buffer over it (NULL when empty)."""
-    array = as_indices([] if values is None else values, name, "(k,)")
-    return array, (ffi.from_buffer("int32_t[]", array) if array.size else ffi.NULL)
-
-
 def _hierarchy_def(
     coarse_vertex_counts: Optional[Sequence[int]], pinned: Optional[Sequence[int]], run: ProgressRun
 ):
@@ -42,16 +36,14 @@ def _hierarchy_def(
     it borrows (keep them alive during the call)."""
     definition = ffi.new("ps_hierarchy_def*")
     lib.ps_hierarchy_def_init(definition)
-    counts, buffer = _index_buffer(coarse_vertex_counts, "coarse_vertex_counts")
+    counts, buffer = index_buffer(coarse_vertex_counts, "coarse_vertex_counts")
     definition.coarse_vertex_counts = buffer
     definition.num_coarse_levels = int(counts.size)
-    pins, pin_buffer = _index_buffer(pinned, "pinned")
+    pins, pin_buffer = index_buffer(pinned, "pinned")
     definition.pinned_vertices = pin_buffer
     definition.num_pinned_vertices = int(pins.size)
-    handle = ffi.new_handle(run)
-    definition.progress = lib._progsim_progress
-    definition.progress_user_data = handle
-    return definition, (counts, buffer, pins, pin_buffer, handle)
+    run.install(definition)
+    return definition, (counts, buffer, pins, pin_buffer)
 
 
 def _create(

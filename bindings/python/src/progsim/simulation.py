@@ -20,6 +20,7 @@ from ._native import (
     decode,
     int32_value,
     fetch_rows,
+    real_value,
     three_floats,
     vec3,
 )
@@ -164,13 +165,6 @@ def _parameter_name(name: str) -> bytes:
     return _ALIASES.get(name, name).encode("utf-8")
 
 
-def _real(value: Any, name: str) -> float:
-    try:
-        return float(value)
-    except (TypeError, ValueError):
-        raise InvalidArgumentError(f"{name} must be a real number, got {value!r}") from None
-
-
 def _integer_field(value: Any, name: str) -> int:
     if isinstance(value, float) and value.is_integer():
         value = int(value)
@@ -273,7 +267,7 @@ class Simulation(NativeObject):
             if field.replace("_", ".", 1) in _INTEGER_PARAMETERS:
                 value = _integer_field(value, keyword)
             else:
-                value = _real(value, keyword)
+                value = real_value(value, keyword)
             setattr(definition, field, value)
         if mode not in MODES:
             raise InvalidArgumentError(f"unknown mode {mode!r}; the modes are {', '.join(MODES)}")
@@ -283,7 +277,7 @@ class Simulation(NativeObject):
         if gravity is not None:
             definition.gravity = three_floats(gravity, "gravity")
         if pressure is not None:
-            definition.pressure = _real(pressure, "pressure")
+            definition.pressure = real_value(pressure, "pressure")
         pinned_buffer = None
         if pinned is not None:
             pinned_array = as_indices(pinned, "pinned", "(k,)")
@@ -418,7 +412,7 @@ class Simulation(NativeObject):
             InvalidArgumentError: unknown name (the message lists the known ones) or value
                 out of range (NaN included); the simulation is unchanged.
         """
-        self._call(lib.ps_sim_set_param, _parameter_name(name), _real(value, name))
+        self._call(lib.ps_sim_set_param, _parameter_name(name), real_value(value, name))
 
     def get_param(self, name: str) -> Union[float, int]:
         """The value of a numeric parameter (names as in :meth:`set_param`); integer
@@ -516,7 +510,7 @@ class Simulation(NativeObject):
             vec3(velocity, "velocity"),
             vec3(axis, "axis"),
             vec3(center, "center"),
-            _real(angular_velocity, "angular_velocity"),
+            real_value(angular_velocity, "angular_velocity"),
             vec3(offset, "offset"),
         )
 

@@ -43,6 +43,45 @@ pub struct AccuracyRow {
     pub intersecting_pairs: usize,
     /// Whether the level ended at equilibrium, progressive or direct.
     pub converged: bool,
+    /// Load steps of the scene's script solved (fewer in a direct solve stopped early).
+    pub load_steps: usize,
+    /// False for a direct solve stopped by [`AccuracyDef::direct_time_ratio`]: its `seconds`
+    /// (and any speed-up against it) is then only a lower bound.
+    pub finished: bool,
+}
+
+/// Which levels an accuracy run solves directly, and for how long. The default solves every
+/// level with no time limit.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AccuracyDef {
+    /// Levels solved directly, in this order (each from 0 to the finest). Empty: every level,
+    /// coarsest first.
+    pub direct_levels: Vec<i32>,
+    /// Stop each direct solve after the load step that takes it past this many times the
+    /// progressive time to the converged finest level (its row then has `finished` false). On
+    /// large scenes the direct finest solve takes hours; a limit still measures a lower bound of
+    /// the speed-up. 0: no limit.
+    pub direct_time_ratio: f64,
+}
+
+impl AccuracyDef {
+    /// The C def borrowing `self`'s levels: valid while `self` is.
+    fn to_raw(&self) -> Result<sys::ps_accuracy_def> {
+        let mut raw = MaybeUninit::<sys::ps_accuracy_def>::uninit();
+        // SAFETY: ps_accuracy_def_init() fills every field of a non-NULL def.
+        let mut raw = unsafe {
+            sys::ps_accuracy_def_init(raw.as_mut_ptr());
+            raw.assume_init()
+        };
+        raw.num_direct_levels = i32::try_from(self.direct_levels.len()).map_err(|_| {
+            Error::new(Status::InvalidArgument, "too many direct levels for the C ABI")
+        })?;
+        if !self.direct_levels.is_empty() {
+            raw.direct_levels = self.direct_levels.as_ptr();
+        }
+        raw.direct_time_ratio = self.direct_time_ratio;
+        Ok(raw)
+    }
 }
 
 /// The results of one accuracy run. Owns a C `ps_accuracy`, destroyed on drop. `Send` but not
@@ -61,18 +100,28 @@ impl Accuracy {
     /// progressively and directly on every level. Long: minutes for large meshes.
     ///
     /// # Errors
-    /// [`Status::Io`], [`Status::InvalidScene`] (a malformed scene, or one without coarse
-    /// levels), [`Status::Unsupported`] (a dynamic scene), [`Status::Intersecting`].
+    /// As [`Accuracy::run_with`].
     pub fn run(scene_path: impl AsRef<Path>) -> Result<Accuracy> {
+        Self::run_with(scene_path, &AccuracyDef::default())
+    }
+
+    /// Runs the scene file progressively and directly on the levels `def` names, each direct
+    /// solve within `def`'s time limit.
+    ///
+    /// # Errors
+    /// [`Status::Io`], [`Status::InvalidScene`] (a malformed scene, or one without coarse
+    /// levels), [`Status::Unsupported`] (a dynamic scene), [`Status::InvalidArgument`] (a
+    /// direct level that does not exist, a negative or NaN time ratio),
+    /// [`Status::Intersecting`].
+    pub fn run_with(scene_path: impl AsRef<Path>, def: &AccuracyDef) -> Result<Accuracy> {
         check_version()?;
         not_in_callback()?;
         let path = c_path(scene_path.as_ref())?;
+        let raw_def = def.to_raw()?;
         let mut out = ptr::null_mut();
-        // SAFETY: path is valid for the call; no progress callback; out receives an owned
-        // handle.
-        let status = unsafe {
-            sys::ps_accuracy_run_scene_file(path.as_ptr(), None, ptr::null_mut(), &mut out)
-        };
+        // SAFETY: path and raw_def (borrowing def's levels) are valid for the call; no progress
+        // callback; out receives an owned handle.
+        let status = unsafe { sys::ps_accuracy_run_scene_file(path.as_ptr(), &raw_def, &mut out) };
         check_thread(status)?;
         let raw = NonNull::new(out).ok_or_else(|| {
             Error::new(Status::Internal, "ps_accuracy_run_scene_file returned no handle")
@@ -129,6 +178,8 @@ impl Accuracy {
             error_max: raw.error_max,
             intersecting_pairs: count_from(raw.intersecting_pairs),
             converged: raw.converged != 0,
+            load_steps: count_from(raw.load_steps),
+            finished: raw.finished != 0,
         })
     }
 }

@@ -58,7 +58,7 @@ use std::sync::OnceLock;
 
 use progsim_sys as sys;
 
-pub use accuracy::{Accuracy, AccuracyRow, Method};
+pub use accuracy::{Accuracy, AccuracyDef, AccuracyRow, Method};
 pub use def::{
     Effect, Effects, HandleMotion, HierarchyDef, LevelStats, Mode, RefinementStats, SimulationDef,
 };
