@@ -3,6 +3,8 @@
 // Neo-Hookean balloon's pressure–stretch curve.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <cmath>
 #include <iostream>
 
