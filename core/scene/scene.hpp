@@ -97,7 +97,8 @@ struct ProgressiveSettings {
   /// Explicit vertex counts of the coarse levels (coarsest first); overrides the two above.
   std::vector<int> level_vertices;
   int preview_iterations = 8;  ///< Newton iterations per preview step (PSQ §4.5, Algorithm 1)
-  /// Newton tolerance of preview solves (PSQ Algorithm 1 line 10); 0: the solver's tolerance.
+  /// Tolerance of preview solves, for their Newton steps and for when a preview level is at
+  /// rest (PSQ Algorithm 1 line 10: ‖d‖₂ < √n_l h ε); 0: the solver's tolerance.
   double preview_tolerance = 0.0;
   ProxyProlongation prolongation = ProxyProlongation::composed;
   ProxyHessian hessian = ProxyHessian::level;

@@ -1,6 +1,7 @@
 #include "sim/direct_simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/error.hpp"
 #include "common/timer.hpp"
@@ -330,9 +331,8 @@ StepRecord DirectSimulation::solve_at(double t, bool new_step) {
   accumulate(record.newton,
              solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
   if (fit_to_start_) restore_fitted(record);
-  record.equilibrium = !dynamic && record.newton.stop == NewtonStop::converged &&
-                       record.script_reached >= 1.0 &&
-                       (!scene_.progressive.proximal || record.newton.iterations == 0);
+  record.change_rms = (x_ - x_previous_).norm() / std::sqrt(x_.size() / 3.0);
+  record.equilibrium = !dynamic && record.script_reached >= 1.0 && at_rest(record);
   if (dynamic) v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
   if (new_step) ++steps_taken_;
   record.step = steps_taken_;
@@ -344,6 +344,15 @@ StepRecord DirectSimulation::solve_at(double t, bool new_step) {
   if (strain_limit_) record.max_stretch = strain_limit_->max_stretch(x_);
   record.seconds = timer.seconds();
   return record;
+}
+
+bool DirectSimulation::at_rest(const StepRecord& record) const {
+  const NewtonStop stop = record.newton.stop;
+  if (!level_.to_finest.empty())  // a preview: PSQ Algorithm 1 line 10, ‖d‖₂ < √n_l h ε
+    return (stop == NewtonStop::converged || stop == NewtonStop::max_iterations) &&
+           record.change_rms < scene_.solver.tolerance * length_;
+  return stop == NewtonStop::converged &&
+         (!scene_.progressive.proximal || record.newton.iterations == 0);
 }
 
 void DirectSimulation::restore_fitted(StepRecord& record) {

@@ -119,6 +119,8 @@ class DirectSimulation {
   bool carry_shell(const Positions& obstacle_target);
   /// Raises the strain limits of faces a prescribed motion stretched beyond them.
   void fit_limits_to_prescribed_motion();
+  /// Whether the solve behind `record` left the state at rest (StepRecord::equilibrium).
+  bool at_rest(const StepRecord& record) const;
 
   Scene scene_;
   SimulationLevel level_;

@@ -33,6 +33,7 @@ std::string to_json_line(const StepRecord& r) {
                            {"line_search", n.timings.line_search}}},
                          {"terms", terms},
                          {"script_reached", r.script_reached},
+                         {"change_rms", r.change_rms},
                          {"equilibrium", r.equilibrium}};
   if (r.contact) {
     const ContactStats& c = *r.contact;

@@ -26,10 +26,15 @@ struct StepRecord {
   /// Fraction of the handles' and obstacles' scripted motion reached this step (1: all; less
   /// when contact kept them from reaching it safely).
   double script_reached = 1.0;
-  /// The state is an equilibrium of the loads (quasistatic scenes): the solve met the Newton
-  /// tolerance and every scripted motion arrived. With PSQ eq. 1's proximal term a converged
-  /// solve is only a gradient-flow step, so there the tolerance must hold before any Newton
-  /// step (PSQ Algorithm 1: the first test passes).
+  /// RMS over the vertices of the change this solve made, ‖xᵗ⁺¹ − xᵗ‖₂/√n (m): PSQ
+  /// Algorithm 1's d, scripted motion included.
+  double change_rms = 0.0;
+  /// The state is an equilibrium of the loads (quasistatic scenes) and every scripted motion
+  /// arrived. A direct solve (any level) must meet the Newton tolerance; with PSQ eq. 1's
+  /// proximal term a converged solve is only a gradient-flow step, so there the tolerance must
+  /// hold before any Newton step. A preview (proxy) solve, capped at a few iterations, stops
+  /// stepping once its change is below the tolerance: ‖d‖₂ < √n_l h ε (PSQ §4.5, Algorithm 1
+  /// line 10, with h = 1 and ε = tolerance × the scene's length).
   bool equilibrium = false;
   /// Contact pairs whose offset is still lowered after a refinement that left them within
   /// their offsets (PSQ §4.4.3 relaxation by offset homotopy); 0 once the full offsets hold.

@@ -61,6 +61,44 @@ TEST_P(ProxyProlongations, RefinedToTheFinestLevelItReachesTheDirectSolution) {
   EXPECT_GT(psq.records()[1].refine_seconds, 0.0);
 }
 
+TEST(ProgressiveSimulation, APreviewRestsOnceItsSolvesMoveLessThanTheTolerance) {
+  // PSQ Algorithm 1 line 10: a preview's capped solves stop stepping once the change they
+  // make is small, ‖d‖₂ < √n_l h ε, whether or not the last one met the Newton tolerance;
+  // the finest level must still meet it.
+  Scene scene = curved_cantilever(16, 40);  // 697 vertices
+  scene.progressive.level_vertices = {60, 200};
+  scene.progressive.preview_iterations = 2;
+  ProgressiveSimulation psq(scene);
+  const double tolerance = psq.current().scene().solver.tolerance;
+  const double epsilon = tolerance * psq.current().characteristic_length();
+  auto settle_and_check = [&](int max_solves) {
+    int capped_at_rest = 0;
+    for (int k = 0; k < max_solves; ++k) {
+      const Positions before = psq.current().positions();
+      const StepRecord r = psq.settle();
+      const Positions after = psq.current().positions();
+      const double change = (after - before).norm() / std::sqrt(double(after.rows()));
+      EXPECT_NEAR(r.change_rms, change, 1e-12 + 1e-9 * change);
+      const bool converged = r.newton.stop == NewtonStop::converged;
+      const bool at_rest =
+          psq.level() < psq.finest()
+              ? (converged || r.newton.stop == NewtonStop::max_iterations) && r.change_rms < epsilon
+              : converged;
+      EXPECT_EQ(r.equilibrium, at_rest && r.script_reached >= 1.0) << "solve " << k;
+      if (r.equilibrium) return capped_at_rest + !converged;
+    }
+    ADD_FAILURE() << "level " << psq.level() << " not at rest after " << max_solves << " solves";
+    return capped_at_rest;
+  };
+  psq.step();
+  int capped_at_rest = settle_and_check(300);
+  while (psq.level() < psq.finest()) {
+    psq.refine();
+    capped_at_rest += settle_and_check(300);
+  }
+  EXPECT_GT(capped_at_rest, 0) << "no preview came to rest on a capped solve";
+}
+
 TEST(ProgressiveSimulation, PlateBucklesTheSameWayOnEveryLevel) {
   // Pressed sides buckle the plate up or down; the imperfection picks up. Every level, its
   // preview and the direct finest solve must agree (PSQ §5, Fig. 16).
