@@ -1,5 +1,6 @@
 #include "progressive/accuracy.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -192,6 +193,20 @@ std::vector<int> direct_levels(const DirectSolves& direct, int finest) {
   return all;
 }
 
+/// A sentence on which obstacle meshes the two methods met, when they differ.
+std::string obstacle_resolution(const AccuracyReport& report) {
+  const std::vector<int>& counts = report.progressive_obstacle_vertices;
+  if (std::all_of(counts.begin(), counts.end(),
+                  [&](int n) { return n == report.obstacle_vertices; }))
+    return "";
+  std::string levels;
+  for (int n : counts) levels += (levels.empty() ? "" : ", ") + std::to_string(n);
+  return "Obstacles: the progressive levels met " + levels +
+         " obstacle vertices (progressive collision objects, PSQ §4.6); every direct solve met "
+         "all " +
+         std::to_string(report.obstacle_vertices) + ".\n\n";
+}
+
 }  // namespace
 
 AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgress progress,
@@ -234,6 +249,7 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
     row.newton_iterations = psq.records()[level].newton_iterations;
     row.converged = psq.records()[level].equilibrium;
     row.load_steps = scene.num_steps();
+    report.progressive_obstacle_vertices.push_back(psq.records()[level].obstacle_vertices);
     Timer prolong;  // checking and prolonging the state is not the method's work
     row.intersecting_pairs = static_cast<int>(psq.current().intersecting_face_pairs());
     report.rows.push_back(row);
@@ -241,6 +257,7 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
     excluded += prolong.seconds();
     if (level == finest) break;
   }
+  report.obstacle_vertices = report.progressive_obstacle_vertices.back();  // as direct solves
   const double time_limit = direct.time_ratio * report.rows.back().seconds;
   for (std::size_t k = 0; k < direct_order.size(); ++k) {
     const int level = direct_order[k];
@@ -285,6 +302,7 @@ std::string accuracy_markdown(const AccuracyReport& report) {
       format("%.3g", report.hierarchy_seconds) +
       " s (not in the times below). Crossing face pairs: CGAL's exact check of the level's "
       "final state, shell and obstacles.\n\n";
+  md += obstacle_resolution(report);
   md +=
       "| method | level | vertices | time (s) | refinement (s) | Newton iterations | error RMS "
       "| error max | crossing face pairs | converged | load steps |\n"

@@ -40,6 +40,10 @@ struct AccuracyReport {
   double hierarchy_seconds = 0.0;  ///< building the mesh hierarchy (not in any row's time)
   double diagonal = 0.0;           ///< finest rest bounding-box diagonal (m)
   std::vector<AccuracyRow> rows;
+  /// Obstacle vertices each progressive level met (fewer than the scene's where an obstacle is
+  /// a progressive collision object, PSQ §4.6); direct solves meet all `obstacle_vertices`.
+  std::vector<int> progressive_obstacle_vertices;
+  int obstacle_vertices = 0;  ///< the scene's obstacle vertices (0 without contact)
 };
 
 /// Progress of a long run: the fraction of the whole run done and the phase, reported when a

@@ -65,6 +65,7 @@ TEST(Accuracy, WritesCsvMarkdownAndPngPlots) {
   const std::string md = accuracy_markdown(plate_report());
   EXPECT_NE(md.find("| method | level | vertices |"), std::string::npos);
   EXPECT_NE(md.find("x faster"), std::string::npos);
+  EXPECT_EQ(md.find("Obstacles:"), std::string::npos);  // no progressive collision object
   for (const char* png : {"error_vs_time.png", "error_by_level.png", "time_by_level.png"}) {
     cairo_surface_t* image = cairo_image_surface_create_from_png((dir / png).c_str());
     EXPECT_EQ(cairo_surface_status(image), CAIRO_STATUS_SUCCESS) << png;

@@ -66,6 +66,17 @@ TEST(PsqScenes, ClothOnSphereIsIntersectionFreeOnEveryLevel) {
   expect_safe_and_converged(report);
   // The coarse preview lies within a fifth of the diagonal of the converged result.
   EXPECT_LT(report.rows[0].error_rms, 0.2);
+  // The sphere is a progressive collision object: the report says the previews met coarser
+  // copies of it than the direct solves, which meet all of its vertices.
+  const int sphere = scene.obstacles[0].mesh.num_vertices();
+  EXPECT_EQ(report.obstacle_vertices, sphere);
+  ASSERT_EQ(report.progressive_obstacle_vertices.size(), 3u);
+  EXPECT_LT(report.progressive_obstacle_vertices[0], report.progressive_obstacle_vertices[1]);
+  EXPECT_LT(report.progressive_obstacle_vertices[1], sphere);
+  EXPECT_EQ(report.progressive_obstacle_vertices[2], sphere);
+  EXPECT_NE(accuracy_markdown(report).find("every direct solve met all " + std::to_string(sphere) +
+                                           ".\n"),
+            std::string::npos);
 }
 
 TEST(PsqScenes, TwistIsIntersectionFreeOnEveryLevel) {
