@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "bench_main.hpp"
+#include "common/timer.hpp"
 #include "progressive/accuracy.hpp"
 #include "scaled_scene.hpp"
 
@@ -55,8 +56,11 @@ AccuracyRow row(const AccuracyReport& r, AccuracyRow::Method method, int level) 
   return none;
 }
 
-bool report_phase(void*, double fraction, const char* phase) {
-  std::fprintf(stderr, "  %3.0f%% %s\n", 100.0 * fraction, phase);
+/// Each phase and load step with the seconds since the run began, so that a run stopped by
+/// hand still tells how far each part got.
+bool report_phase(void* run_timer, double fraction, const char* phase) {
+  const double seconds = static_cast<const Timer*>(run_timer)->seconds();
+  std::fprintf(stderr, "  %8.1f s %3.0f%% %s\n", seconds, 100.0 * fraction, phase);
   return true;
 }
 
@@ -97,8 +101,9 @@ int run(int argc, char** argv) {
       const char* name = hessian == ProxyHessian::level ? "level" : "galerkin";
       const Scene scene = scaled(scene_path, factor, hessian);
       std::fprintf(stderr, "%s, cells ×%g, %s preconditioner\n", scene.name.c_str(), factor, name);
+      Timer run_timer;
       const AccuracyReport r =
-          run_accuracy(scene, 500, report_phase, nullptr, direct_solves(scene, time_ratio));
+          run_accuracy(scene, 500, report_phase, &run_timer, direct_solves(scene, time_ratio));
       int finest = 0;
       for (const AccuracyRow& x : r.rows) finest = std::max(finest, x.level);
       const AccuracyRow preview = row(r, AccuracyRow::Method::progressive, 0);

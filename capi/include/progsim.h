@@ -541,8 +541,9 @@ typedef struct ps_accuracy_def {
    *  the run call only. */
   const int32_t* direct_levels;
   int32_t num_direct_levels; /**< entries in direct_levels (0 to 64); default 0 */
-  /** A direct solve stops after the load step (or settling solve) that takes it past this many
-   *  times the progressive time to the converged finest level; its row then has finished = 0.
+  /** A direct solve stops within the Newton iteration that takes it past this many times the
+   *  progressive time to the converged finest level; its row then has finished = 0 (a load
+   *  step stopped inside is not counted in load_steps).
    *  On large scenes the direct finest solve can take hours; a limit still measures a lower
    *  bound of the speed-up. 0 (the default): no limit; negative or NaN:
    *  PS_ERROR_INVALID_ARGUMENT. */

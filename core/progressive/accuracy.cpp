@@ -50,7 +50,8 @@ void set_errors(AccuracyRow& row, const Positions& x, const Positions& reference
 
 /// The scene solved directly on `level` over its load script and settled to equilibrium (at
 /// most `max_settles` more solves, as the progressive levels), prolonged to the finest mesh.
-/// Stops unfinished once it has taken longer than `time_limit` seconds (0: no limit).
+/// Stops unfinished within the Newton iteration that takes it past `time_limit` seconds (0: no
+/// limit); a load step stopped inside is not counted as solved.
 AccuracyRow direct_row(const Scene& scene, const ProgressiveSimulation& psq, int level,
                        int max_settles, double time_limit, const Phase& phase,
                        Positions& prolonged) {
@@ -58,25 +59,23 @@ AccuracyRow direct_row(const Scene& scene, const ProgressiveSimulation& psq, int
   row.method = Method::direct;
   row.level = level;
   Timer timer;
-  bool stopped = false;
-  const auto may_go_on = [&] {
-    stopped = stopped || (time_limit > 0.0 && timer.seconds() > time_limit);
-    return !stopped;
-  };
   DirectSimulation sim(scene, SimulationLevel{psq.shared_hierarchy(), level, {}});
+  if (time_limit > 0.0) sim.set_interrupt([&] { return timer.seconds() > time_limit; });
   StepRecord last;
-  while (row.load_steps < scene.num_steps() && may_go_on()) {
+  const auto stopped = [&] { return last.newton.stop == NewtonStop::interrupted; };
+  while (row.load_steps < scene.num_steps()) {
     last = sim.step();
     row.newton_iterations += last.newton.iterations;
+    if (stopped()) break;
     phase.load_step(++row.load_steps, scene.num_steps());
   }
-  for (int k = 0; k < max_settles && !last.equilibrium && may_go_on(); ++k) {
+  for (int k = 0; k < max_settles && !last.equilibrium && !stopped(); ++k) {
     last = sim.settle();
     row.newton_iterations += last.newton.iterations;
   }
   row.seconds = timer.seconds();
-  row.finished = !stopped;
-  row.converged = !stopped && last.equilibrium;
+  row.finished = !stopped();
+  row.converged = row.finished && last.equilibrium;
   row.intersecting_pairs = static_cast<int>(sim.intersecting_face_pairs());
   row.vertices = sim.model().rest.num_vertices();
   prolonged = level < psq.finest() ? psq.prolong_to_finest(level, Positions(sim.positions()))

@@ -57,8 +57,9 @@ using AccuracyProgress = bool (*)(void* user, double fraction, const char* phase
 /// bound of the progressive speed-up.
 struct DirectSolves {
   std::vector<int> levels;  ///< solved in this order; empty: every level, coarsest first
-  /// A direct solve stops after the load step (or settling solve) that takes it past this many
-  /// times the progressive time to the converged finest level; 0: no limit.
+  /// A direct solve stops within the Newton iteration that takes it past this many times the
+  /// progressive time to the converged finest level (a load step stopped inside is not counted
+  /// in AccuracyRow::load_steps); 0: no limit.
   double time_ratio = 0.0;
 };
 

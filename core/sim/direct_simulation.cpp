@@ -243,8 +243,8 @@ double DirectSimulation::advance_scripts(double t, double decrement_scale, Newto
     // A solve that did not move (its first step was below the tolerance) left the contact
     // that bounded this round as close as it was: the next rounds would each close its gap
     // tenfold (a Zeno sequence) without pushing back. The step's own solve and the next
-    // solve's rounds go on from here.
-    if (round_solve.iterations == 0) break;
+    // solve's rounds go on from here. An interrupted solve moves nothing further either.
+    if (round_solve.iterations == 0 || round_solve.stop == NewtonStop::interrupted) break;
   }
   return reached;
 }

@@ -1,6 +1,7 @@
 #pragma once
 /// @file Direct (single-level) simulation of a scene: the baseline every progressive method
 /// is compared against, and the finest-level solve of the progressive drivers.
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -63,6 +64,13 @@ class DirectSimulation {
   /// Solves again at the current time with the same loads (no time advance, friction not
   /// re-lagged): reaches equilibrium after a refinement or a parameter change.
   StepRecord settle();
+
+  /// Makes every later Newton solve check `interrupted` before each iteration and stop when it
+  /// returns true, mid-step (NewtonStop::interrupted in the record, not at rest): a caller's
+  /// time limit. The state stays the last accepted iterate, intersection-free.
+  void set_interrupt(std::function<bool()> interrupted) {
+    solver_.set_interrupt(std::move(interrupted));
+  }
 
   /// Replaces the scene between steps (materials, loads, handles, effects, time step,
   /// solver settings) and rebuilds the problem, keeping positions, velocities and time.

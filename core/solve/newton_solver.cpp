@@ -21,6 +21,8 @@ const char* stop_name(NewtonStop stop) {
       return "non_finite";
     case NewtonStop::factorization_failed:
       return "factorization_failed";
+    case NewtonStop::interrupted:
+      return "interrupted";
   }
   return "unknown";
 }
@@ -176,6 +178,10 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
   const bool refine_projected = settings.projection == HessianProjection::adaptive &&
                                 settings.max_cg_iterations > 0 && problem.hessian_is_exact();
   for (report.iterations = 0; report.iterations < settings.max_iterations; ++report.iterations) {
+    if (interrupted_ && interrupted_()) {
+      report.stop = NewtonStop::interrupted;
+      break;
+    }
     {
       ScopedTimer timer(time.assembly);
       problem.gradient(x, gradient_);
@@ -226,7 +232,8 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
     energy = new_energy;
     if (problem.end_iteration(x)) energy = problem.value(x);  // e.g. contact stiffness grew
   }
-  if (report.stop == NewtonStop::max_iterations) {  // report the state actually returned
+  // Report the state actually returned.
+  if (report.stop == NewtonStop::max_iterations || report.stop == NewtonStop::interrupted) {
     ScopedTimer timer(time.assembly);
     problem.gradient(x, gradient_);
     problem.restrict_to_free(gradient_, gradient_free_);

@@ -1,5 +1,6 @@
 #pragma once
 /// @file Projected Newton with backtracking line search (DESIGN.md §2; C-IPC, Li et al. 2021).
+#include <functional>
 #include <optional>
 
 #include "problem/problem.hpp"
@@ -68,6 +69,7 @@ enum class NewtonStop {
   line_search_failed,    ///< no step length decreased the energy
   non_finite,            ///< the energy or gradient became NaN/Inf
   factorization_failed,  ///< CHOLMOD failed even with a diagonal shift
+  interrupted,           ///< the solver's interrupt check asked to stop (set_interrupt)
 };
 
 /// Stable name of a stop reason ("converged", ...).
@@ -105,6 +107,11 @@ class NewtonSolver {
   NewtonReport minimize(Problem& problem, Vector& x, const NewtonSettings& settings,
                         double decrement_scale, double length);
 
+  /// A check every later solve makes before each iteration: when it returns true the solve
+  /// stops (NewtonStop::interrupted) at its last accepted iterate, as intersection-free as any
+  /// other (each accepted step passed CCD). Empty (the default): solves are never interrupted.
+  void set_interrupt(std::function<bool()> interrupted) { interrupted_ = std::move(interrupted); }
+
  private:
   bool line_search(Problem& problem, const Vector& x, double energy, double slope,
                    const NewtonSettings& settings, double& alpha, double& new_energy);
@@ -127,6 +134,7 @@ class NewtonSolver {
   Vector gradient_, gradient_free_, step_free_, step_, trial_, longer_step_, longer_trial_;
   Problem::SparseMatrix exact_;  ///< the exact Hessian of an iteration that projected
   Vector cg_work_[4];
+  std::function<bool()> interrupted_;
 };
 
 }  // namespace progsim

@@ -217,3 +217,32 @@ TEST(NewtonSolver, ReportsTheIterationCap) {
   EXPECT_EQ(solver.minimize(problem, x, settings, 1.0, 1.0).stop, NewtonStop::max_iterations);
   EXPECT_STREQ(stop_name(NewtonStop::line_search_failed), "line_search_failed");
 }
+
+TEST(NewtonSolver, StopsWhenItsInterruptCheckSaysSoAtTheLastAcceptedIterate) {
+  // The saddle needs about 20 projected iterations; the check says stop at its 4th call, so
+  // the solve returns after 3 iterations, where a 3-iteration cap leaves it.
+  NewtonSettings settings = saddle_settings();
+  settings.extrapolate = false;
+  Problem capped_problem = saddle_problem(0.0);
+  Vector capped = just_off_the_origin();
+  settings.max_iterations = 3;
+  NewtonSolver capped_solver;
+  const NewtonReport cap = capped_solver.minimize(capped_problem, capped, settings, 1.0, 1.0);
+  ASSERT_EQ(cap.stop, NewtonStop::max_iterations);
+
+  Problem problem = saddle_problem(0.0);
+  Vector x = just_off_the_origin();
+  settings.max_iterations = 100;
+  NewtonSolver solver;
+  int checks = 0;
+  solver.set_interrupt([&] { return ++checks > 3; });
+  const NewtonReport report = solver.minimize(problem, x, settings, 1.0, 1.0);
+  EXPECT_EQ(report.stop, NewtonStop::interrupted);
+  EXPECT_EQ(report.iterations, 3);
+  EXPECT_EQ(x, capped);
+  EXPECT_DOUBLE_EQ(report.gradient_norm, cap.gradient_norm);  // of the state returned
+  EXPECT_STREQ(stop_name(NewtonStop::interrupted), "interrupted");
+  solver.set_interrupt({});  // cleared: the next solve runs on to the minimum
+  EXPECT_EQ(solver.minimize(problem, x, settings, 1.0, 1.0).stop, NewtonStop::converged);
+  EXPECT_NEAR(x[3], 1.0, 1e-8);
+}

@@ -73,9 +73,9 @@ class Accuracy(NativeObject):
         Args:
             scene_path: a scene file with a ``"progressive"`` section.
             direct_levels: the levels solved directly, in this order (default: every level).
-            direct_time_ratio: stop each direct solve after the load step that takes it past
-                this many times the progressive time to the converged finest level (its row
-                then has ``finished=False``); 0 (default) for no limit.
+            direct_time_ratio: stop each direct solve within the Newton iteration that takes
+                it past this many times the progressive time to the converged finest level
+                (its row then has ``finished=False``); 0 (default) for no limit.
             progress: ``True`` for a tqdm bar, ``False`` for none, or a callable
                 ``(done, total, phase) -> bool`` returning True to cancel.
 

@@ -57,8 +57,8 @@ pub struct AccuracyDef {
     /// Levels solved directly, in this order (each from 0 to the finest). Empty: every level,
     /// coarsest first.
     pub direct_levels: Vec<i32>,
-    /// Stop each direct solve after the load step that takes it past this many times the
-    /// progressive time to the converged finest level (its row then has `finished` false). On
+    /// Stop each direct solve within the Newton iteration that takes it past this many times
+    /// the progressive time to the converged finest level (its row then has `finished` false). On
     /// large scenes the direct finest solve takes hours; a limit still measures a lower bound of
     /// the speed-up. 0: no limit.
     pub direct_time_ratio: f64,
