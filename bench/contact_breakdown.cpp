@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bench_main.hpp"
+#include "common/constants.hpp"
 #include "contact/contact_potential.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "sim/direct_simulation.hpp"
@@ -18,8 +19,6 @@
 using namespace progsim;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Scene cloth_over_sphere(int n, int steps, bool contact) {
   Scene scene;

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <string>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 
 namespace progsim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 using Vector12 = Eigen::Matrix<double, 12, 1>;
 using Matrix12 = Eigen::Matrix<double, 12, 12>;
 using Matrix9 = Eigen::Matrix<double, 9, 9>;

@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 
 namespace progsim {
@@ -18,7 +19,6 @@ namespace {
 
 using Face = std::array<int, 3>;
 
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 /// A uv triangle counts as positively oriented above this fraction of the polygon area.
 constexpr double kMinRelativeArea = 1e-12;
 

@@ -9,13 +9,12 @@
 #include <utility>
 #include <vector>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "mesh/mesh_topology.hpp"
 
 namespace progsim {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925286766559;
 
 /// Throws Error(invalid_argument, "<requirement> (got a, b, ...)").
 [[noreturn]] void reject_arguments(const std::string& requirement,

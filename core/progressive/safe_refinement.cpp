@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/parallel.hpp"
 #include "hierarchy/expansion_coloring.hpp"
@@ -15,7 +16,6 @@
 namespace progsim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// Directions per stratified round: a Fibonacci lattice covering the sphere evenly.
 constexpr int kDirectionsPerRound = 64;
 /// A perturbed vertex keeps its patch's other primitives at least this fraction of the

@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 
 namespace progsim {
@@ -43,7 +44,6 @@ constexpr double kLegendGap = 14;  // between the plot area and the legend
 constexpr double kLegendPad = 8;
 constexpr double kSwatch = 24;  // legend line sample length
 constexpr double kMarkerRadius = 4;
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kLineWidth = 2;
 constexpr double kBaseWidth = 900;  // image size at which the fonts have their base sizes
 constexpr double kBaseHeight = 600;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "mesh/mesh_io.hpp"
@@ -16,7 +17,6 @@ namespace progsim {
 namespace {
 
 using Json = nlohmann::json;
-constexpr double kPi = 3.14159265358979323846;
 
 [[noreturn]] void scene_error(const std::string& where, const std::string& what) {
   fail(Status::invalid_scene, where + ": " + what);

@@ -15,39 +15,29 @@
 using namespace progsim;
 namespace pt = progsim::test_support;
 using pt::eigenvalues;
+using pt::expect_derivatives_match_finite_differences;
 using pt::perturbed;
 using pt::rigidly_moved;
 using pt::varied_materials;
 
 namespace {
 
-void expect_derivatives_match_finite_differences(const EnergyTerm& term, const Vector& x,
-                                                 double step, double tolerance) {
-  const Vector g = pt::analytic_gradient(term, x);
-  const Vector g_fd = pt::finite_difference_gradient(term, x, step);
-  EXPECT_LT(pt::relative_error(g, g_fd, 1e-12), tolerance) << "gradient";
-  const Eigen::MatrixXd h = pt::assembled_hessian(term, x, false);
-  const Eigen::MatrixXd h_fd = pt::finite_difference_hessian(term, x, step);
-  EXPECT_LT(pt::relative_error(h, h_fd, 1e-12), tolerance) << "Hessian";
-  EXPECT_LT((h - h.transpose()).cwiseAbs().maxCoeff(), 1e-12 * h.cwiseAbs().maxCoeff());
-}
-
-struct Case {
+struct MembraneMesh {
   TriangleMesh mesh;
   double edge;  ///< typical edge length (m)
 };
 
-Case grid_case() {
+MembraneMesh grid_case() {
   return {make_grid(1.0, 1.0, 3, 3), 1.0 / 3.0};
 }
-Case cylinder_case() {
+MembraneMesh cylinder_case() {
   return {make_cylinder(0.4, 0.6, 2.0, 4, 3), 0.2};
 }
 
 }  // namespace
 
 TEST(NeoHookeanMembrane, DerivativesMatchFiniteDifferencesAtRandomStates) {
-  for (const Case& c : {grid_case(), cylinder_case()}) {
+  for (const MembraneMesh& c : {grid_case(), cylinder_case()}) {
     const NeoHookeanMembrane term(c.mesh.vertices, c.mesh.faces,
                                   varied_materials(c.mesh.num_faces(), 3));
     EXPECT_STREQ(term.name(), "membrane");
@@ -60,7 +50,7 @@ TEST(NeoHookeanMembrane, DerivativesMatchFiniteDifferencesAtRandomStates) {
 }
 
 TEST(NeoHookeanMembrane, LargeStretchAndCompressionDerivativesMatchFiniteDifferences) {
-  const Case c = grid_case();
+  const MembraneMesh c = grid_case();
   const NeoHookeanMembrane term(c.mesh.vertices, c.mesh.faces,
                                 varied_materials(c.mesh.num_faces(), 4));
   for (double scale : {0.4, 2.5}) {
@@ -83,7 +73,7 @@ TEST(NeoHookeanMembrane, RestShapeHasZeroEnergyAndForce) {
 }
 
 TEST(NeoHookeanMembrane, InvariantUnderRigidMotion) {
-  const Case c = cylinder_case();
+  const MembraneMesh c = cylinder_case();
   const NeoHookeanMembrane term(c.mesh.vertices, c.mesh.faces,
                                 varied_materials(c.mesh.num_faces(), 6));
   const Vector x = perturbed(c.mesh.vertices, 0.25 * c.edge, 11);
@@ -96,7 +86,7 @@ TEST(NeoHookeanMembrane, InvariantUnderRigidMotion) {
 }
 
 TEST(NeoHookeanMembrane, ProjectedHessianIsPsdAndExactWhereNothingNeedsClamping) {
-  const Case c = grid_case();
+  const MembraneMesh c = grid_case();
   const NeoHookeanMembrane term(c.mesh.vertices, c.mesh.faces,
                                 varied_materials(c.mesh.num_faces(), 7));
   // Compressed: the exact Hessian is indefinite, the projected one PSD.

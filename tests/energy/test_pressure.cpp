@@ -8,6 +8,7 @@
 #include <iostream>
 #include <random>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "energy/pressure.hpp"
 #include "mesh/mesh_generators.hpp"
@@ -19,12 +20,6 @@ using pt::eigenvalues;
 using pt::perturbed;
 using pt::rigidly_moved;
 using pt::varied_materials;
-
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
 
 TEST(Pressure, SphereVolumeConvergesToFourThirdsPiRCubed) {
   const double r = 0.7, exact = 4.0 / 3.0 * kPi * r * r * r;

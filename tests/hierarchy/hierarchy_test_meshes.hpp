@@ -1,6 +1,8 @@
 #pragma once
-/// @file Meshes shared by the hierarchy tests.
+/// @file Meshes and a distance shared by the hierarchy tests.
+#include <Eigen/Geometry>
 #include <cmath>
+#include <random>
 
 #include "mesh/mesh_generators.hpp"
 
@@ -14,6 +16,19 @@ inline TriangleMesh dome(int n) {
     mesh.vertices.row(v) << x, y, std::sqrt(1.0 - x * x - y * y);
   }
   return mesh;
+}
+
+/// A random rotation (uniform on SO(3): a normalized Gaussian quaternion) drawn from rng.
+inline Mat3 random_rotation(std::mt19937& rng) {
+  std::normal_distribution<double> normal;
+  return Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng))
+      .normalized()
+      .toRotationMatrix();
+}
+
+/// max over rows of ‖a_i − b_i‖ (m).
+inline double max_row_distance(const Positions& a, const Positions& b) {
+  return (a - b).rowwise().norm().maxCoeff();
 }
 
 }  // namespace progsim::test_support

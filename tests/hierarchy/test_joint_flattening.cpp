@@ -10,6 +10,7 @@
 #include <map>
 #include <random>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "hierarchy/joint_flattening.hpp"
 
@@ -150,7 +151,6 @@ TEST(JointFlattening, PlanarPatchWithRegularLinkIsReproducedIsometrically) {
   // A planar octagon on the unit circle around an off-centre edge: the circle placement is then
   // a rotation of the rest shape, and mean-value weights reproduce linear maps (Floater 2003),
   // so every uv, the merged one included, keeps its distances to the loop vertices.
-  constexpr double kPi = 3.14159265358979323846;
   CollapsePatch patch;
   patch.a = 0;
   patch.b = 1;

@@ -67,13 +67,13 @@ TriangleMesh real_mesh(const std::string& name) {
   return read_mesh((root / "meshes" / name).string());
 }
 
-struct Case {
+struct HierarchyCase {
   std::string name;
   TriangleMesh mesh;
   std::vector<int> counts;
 };
 
-std::vector<Case> cases() {
+std::vector<HierarchyCase> cases() {
   return {{"flat sheet", make_grid(1.0, 1.0, 30, 30), {60, 240}},
           {"dome", dome(24), {50, 200}},
           {"closed sphere", make_sphere(1.0, 3), {42, 160}},
@@ -89,17 +89,6 @@ std::array<int, 2> euler_and_boundary(const TriangleMesh& mesh) {
       std::count(topology.edge_on_boundary.begin(), topology.edge_on_boundary.end(), true));
   return {mesh.num_vertices() - static_cast<int>(topology.edges.size()) + mesh.num_faces(),
           boundary > 0};
-}
-
-double max_row_distance(const Positions& a, const Positions& b) {
-  return (a - b).rowwise().norm().maxCoeff();
-}
-
-Mat3 random_rotation(std::mt19937& rng) {
-  std::normal_distribution<double> normal;
-  return Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng))
-      .normalized()
-      .toRotationMatrix();
 }
 
 /// Largest angle between the normals of two faces sharing an edge (radians).
@@ -125,7 +114,7 @@ std::vector<FaceCorners> canonical(std::vector<FaceCorners> faces) {
 class EveryMesh : public ::testing::TestWithParam<int> {
  protected:
   static void SetUpTestSuite() {
-    for (const Case& c : cases()) {
+    for (const HierarchyCase& c : cases()) {
       HierarchyOptions options;
       options.coarse_vertex_counts = c.counts;
       built_.push_back(build_hierarchy(c.mesh, options));
@@ -141,7 +130,7 @@ class EveryMesh : public ::testing::TestWithParam<int> {
 
 TEST_P(EveryMesh, LevelsHaveTheAskedSizesAreValidAndKeepTheTopology) {
   const MeshHierarchy& h = hierarchy();
-  const Case c = cases()[GetParam()];
+  const HierarchyCase c = cases()[GetParam()];
   ASSERT_EQ(h.num_levels(), static_cast<int>(c.counts.size()) + 1) << name();
   const auto finest = euler_and_boundary(c.mesh);
   for (int l = 0; l < h.num_levels(); ++l) {

@@ -16,10 +16,15 @@
 #include "common/error.hpp"
 #include "common/parallel.hpp"
 #include "hierarchy/barycentric_prolongation.hpp"
+#include "hierarchy/hierarchy_test_meshes.hpp"
 #include "hierarchy/shell_prolongation.hpp"
 #include "mesh/mesh_generators.hpp"
+#include "support/expect_error.hpp"
 
 using namespace progsim;
+using progsim::test_support::expect_error;
+using progsim::test_support::max_row_distance;
+using progsim::test_support::random_rotation;
 
 namespace {
 
@@ -131,15 +136,6 @@ Positions times(const Eigen::MatrixXd& u, const Positions& x) {
   return u * x;
 }
 
-/// max over rows of |a_i − b_i|.
-double max_row_distance(const Positions& a, const Positions& b) {
-  return (a - b).rowwise().norm().maxCoeff();
-}
-
-double bbox_diagonal(const Positions& x) {
-  return (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
-}
-
 /// A non-rigid deformation of the rest shape: a shear-bend map plus uniform noise of ±0.03.
 Positions deformed(const Positions& rest, unsigned seed) {
   std::mt19937 rng(seed);
@@ -151,13 +147,6 @@ Positions deformed(const Positions& rest, unsigned seed) {
         pz + 0.3 * px * py + noise(rng);
   }
   return x;
-}
-
-Mat3 random_rotation(std::mt19937& rng) {
-  std::normal_distribution<double> normal;
-  return Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng))
-      .normalized()
-      .toRotationMatrix();
 }
 
 /// Every row p of x mapped to q p + c.
@@ -190,27 +179,6 @@ Vec3 reference_offset(const LevelPair& pair, Eigen::Index i, const Positions& co
   return n * gamma + r * t;
 }
 
-/// The Error thrown by `call`; fails the test if there is none.
-template <class Call>
-Error error_of(Call call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no progsim::Error thrown";
-  return Error(Status::ok, "");
-}
-
-/// Expects `call` to throw Error(status) whose message contains `text`.
-template <class Call>
-void expect_error(Call call, Status status, const std::string& text) {
-  const Error e = error_of(call);
-  EXPECT_EQ(e.status(), status) << e.what();
-  EXPECT_NE(std::string(e.what()).find(text), std::string::npos)
-      << "message '" << e.what() << "' lacks '" << text << "'";
-}
-
 TEST(ShellProlongation, RecoversTheRestShape) {
   for (const LevelPair& pair : level_pairs()) {
     SCOPED_TRACE(pair.name);
@@ -218,7 +186,8 @@ TEST(ShellProlongation, RecoversTheRestShape) {
     ASSERT_EQ(p.fine_vertices(), pair.fine_rest.rows());
     ASSERT_EQ(p.coarse_vertices(), pair.coarse.num_vertices());
     const Positions fine = p(pair.coarse.vertices);
-    EXPECT_LE(max_row_distance(fine, pair.fine_rest), 1e-12 * bbox_diagonal(pair.fine_rest));
+    EXPECT_LE(max_row_distance(fine, pair.fine_rest),
+              1e-12 * bounding_box_diagonal(pair.fine_rest));
     // The offsets carry real detail: the barycentric operator alone misses the rest shape.
     const Positions anchors_only = times(dense_intrinsic(pair), pair.coarse.vertices);
     EXPECT_GT(max_row_distance(anchors_only, pair.fine_rest), 1e-2);
@@ -386,15 +355,15 @@ TEST(Prolongation, RejectsBadAnchors) {
       };
     };
     expect_error(construct(faces, third), Status::invalid_argument,
-                 "fine vertex 5: anchor face " + std::to_string(faces) + " out of range");
+                 {"fine vertex 5: anchor face " + std::to_string(faces) + " out of range"});
     expect_error(construct(-1, third), Status::invalid_argument,
-                 "fine vertex 5: anchor face -1 out of range");
+                 {"fine vertex 5: anchor face -1 out of range"});
     expect_error(construct(0, Vec3(nan, 0.5, 0.5)), Status::invalid_argument,
-                 "fine vertex 5: anchor weights (nan, 0.5, 0.5) are not finite");
+                 {"fine vertex 5: anchor weights (nan, 0.5, 0.5) are not finite"});
     expect_error(construct(0, Vec3(-0.1, 0.6, 0.5)), Status::invalid_argument,
-                 "fine vertex 5: anchor weights (-0.1, 0.6, 0.5) have a negative entry");
+                 {"fine vertex 5: anchor weights (-0.1, 0.6, 0.5) have a negative entry"});
     expect_error(construct(0, Vec3(0.2, 0.6, 0.5)), Status::invalid_argument,
-                 "fine vertex 5: anchor weights (0.2, 0.6, 0.5) do not sum to 1");
+                 {"fine vertex 5: anchor weights (0.2, 0.6, 0.5) do not sum to 1"});
   }
 }
 
@@ -404,20 +373,20 @@ TEST(ShellProlongation, RejectsBadMeshes) {
   SurfaceAnchors too_few = pair.anchors;
   too_few.pop_back();
   expect_error([&] { ShellProlongation(c.vertices, c.faces, too_few, pair.fine_rest); },
-               Status::invalid_argument, "24 anchors for 25 fine vertices");
+               Status::invalid_argument, {"24 anchors for 25 fine vertices"});
   Faces out_of_range = c.faces;
   out_of_range(3, 1) = c.num_vertices();
   expect_error([&] { ShellProlongation(c.vertices, out_of_range, pair.anchors, pair.fine_rest); },
-               Status::invalid_mesh, "coarse face 3 has vertex index 9 out of range");
+               Status::invalid_mesh, {"coarse face 3 has vertex index 9 out of range"});
   Faces with_degenerate(c.num_faces() + 1, 3);
   with_degenerate << c.faces, 0, 1, 1;
   expect_error(
       [&] { ShellProlongation(c.vertices, with_degenerate, pair.anchors, pair.fine_rest); },
-      Status::invalid_mesh, "rest face 8 is degenerate");
+      Status::invalid_mesh, {"rest face 8 is degenerate"});
   Positions nan_rest = pair.fine_rest;
   nan_rest(3, 2) = std::numeric_limits<double>::quiet_NaN();
   expect_error([&] { ShellProlongation(c.vertices, c.faces, pair.anchors, nan_rest); },
-               Status::invalid_argument, "fine rest vertex 3 is not finite");
+               Status::invalid_argument, {"fine rest vertex 3 is not finite"});
 }
 
 TEST(Prolongation, RejectsWrongShapes) {
@@ -430,13 +399,13 @@ TEST(Prolongation, RejectsWrongShapes) {
     const Positions coarse = pair.coarse.vertices, too_many(10, 3);
     Positions fine(25, 3), short_fine(24, 3);
     expect_error([&] { p->apply(too_many, fine); }, Status::invalid_argument,
-                 "apply: coarse positions have 10 rows, expected 9");
+                 {"apply: coarse positions have 10 rows, expected 9"});
     expect_error([&] { p->apply(coarse, short_fine); }, Status::invalid_argument,
-                 "apply: output has 24 rows, expected 25");
+                 {"apply: output has 24 rows, expected 25"});
     expect_error([&] { p->offsets(coarse, short_fine); }, Status::invalid_argument,
-                 "offsets: output has 24 rows, expected 25");
+                 {"offsets: output has 24 rows, expected 25"});
     expect_error([&] { p->restrict_gradient(short_fine); }, Status::invalid_argument,
-                 "restrict_gradient got 24 rows for 25 fine vertices");
+                 {"restrict_gradient got 24 rows for 25 fine vertices"});
   }
   // Equal vertex counts (every fine vertex on a coarse corner): in-place use is refused.
   SurfaceAnchors corners(pair.coarse.num_vertices());
@@ -445,7 +414,7 @@ TEST(Prolongation, RejectsWrongShapes) {
   const BarycentricProlongation identity(pair.coarse.faces, pair.coarse.num_vertices(), corners);
   Positions x = pair.coarse.vertices;
   EXPECT_EQ(identity(x), x);
-  expect_error([&] { identity.apply(x, x); }, Status::invalid_argument, "aliases the input");
+  expect_error([&] { identity.apply(x, x); }, Status::invalid_argument, {"aliases the input"});
 }
 
 TEST(Prolongation, ResultsAreBitwiseIndependentOfTheThreadCount) {

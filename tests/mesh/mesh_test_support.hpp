@@ -1,6 +1,7 @@
 #pragma once
-/// @file Helpers shared by the mesh tests: error capture and a brute-force topology check
-/// that recomputes edges from the faces with std::map, independently of build_topology().
+/// @file Helpers shared by the mesh tests: expect_error (support/expect_error.hpp) and a
+/// brute-force topology check that recomputes edges from the faces with std::map,
+/// independently of build_topology().
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -10,28 +11,13 @@
 #include <map>
 #include <string>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "mesh/mesh_topology.hpp"
 #include "mesh/triangle_mesh.hpp"
+#include "support/expect_error.hpp"
 
 namespace progsim::test_support {
-
-constexpr double kPi = 3.14159265358979323846;
-
-/// Expects `action` to throw Error(status) whose message contains each of `parts`.
-template <class Action>
-void expect_error(Action&& action, Status status, std::initializer_list<std::string> parts) {
-  try {
-    action();
-  } catch (const Error& e) {
-    EXPECT_EQ(e.status(), status) << status_name(e.status()) << ": " << e.what();
-    for (const std::string& part : parts)
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
-          << "message \"" << e.what() << "\" lacks \"" << part << "\"";
-    return;
-  }
-  ADD_FAILURE() << "no progsim::Error thrown; expected " << status_name(status);
-}
 
 /// Number of faces on each undirected edge (i < j), counted straight from the faces.
 inline std::map<std::array<int, 2>, int> faces_per_edge(const Faces& faces) {

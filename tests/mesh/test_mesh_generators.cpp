@@ -13,7 +13,6 @@
 using namespace progsim;
 using progsim::test_support::expect_error;
 using progsim::test_support::faces_per_edge;
-using progsim::test_support::kPi;
 using progsim::test_support::signed_volume;
 
 namespace {

@@ -11,7 +11,6 @@
 
 using namespace progsim;
 using progsim::test_support::expect_error;
-using progsim::test_support::kPi;
 
 namespace {
 

@@ -2,6 +2,7 @@
 /// @file Small quasistatic scenes shared by the progressive-simulation tests.
 #include <cmath>
 
+#include "common/constants.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "scene/scene.hpp"
 
@@ -36,8 +37,7 @@ inline Scene curved_cantilever(int n_around, int n_along) {
   material.poisson_ratio = 0.3;
   material.thickness = 1e-3;
   material.density = 1000.0;
-  Scene scene =
-      shell_scene(make_cylinder(0.05, 0.4, 3.14159265358979323846, n_around, n_along), material);
+  Scene scene = shell_scene(make_cylinder(0.05, 0.4, kPi, n_around, n_along), material);
   Handle clamp;
   clamp.vertices = vertices_at(scene.bodies[0].mesh, 1, 0.0);
   scene.handles.push_back(clamp);
@@ -54,8 +54,8 @@ namespace progsim::test_support {
 inline Scene buckling_plate(int n, double bump, int steps) {
   TriangleMesh mesh = make_grid(1.0, 1.0, n, n);
   for (int v = 0; v < mesh.num_vertices(); ++v)
-    mesh.vertices(v, 2) = bump * std::sin(3.14159265358979323846 * mesh.vertices(v, 0)) *
-                          std::sin(3.14159265358979323846 * mesh.vertices(v, 1));
+    mesh.vertices(v, 2) =
+        bump * std::sin(kPi * mesh.vertices(v, 0)) * std::sin(kPi * mesh.vertices(v, 1));
   ShellMaterial steel;
   steel.youngs_modulus = 7e10;
   steel.poisson_ratio = 0.33;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "contact/contact_potential.hpp"
 #include "hierarchy/hierarchy_test_meshes.hpp"
@@ -36,7 +37,7 @@ TriangleMesh small_triangle(const Vec3& c, const Vec3& n, double r) {
   TriangleMesh t;
   t.vertices.resize(3, 3);
   for (int k = 0; k < 3; ++k) {
-    const double a = 2.0 * 3.14159265358979323846 * k / 3.0;
+    const double a = 2.0 * kPi * k / 3.0;
     t.vertices.row(k) = (c + r * (std::cos(a) * u + std::sin(a) * v)).transpose();
   }
   t.faces.resize(1, 3);

@@ -17,8 +17,10 @@
 
 #include "common/error.hpp"
 #include "report/line_plot.hpp"
+#include "support/expect_error.hpp"
 
 using namespace progsim;
+using progsim::test_support::expect_error;
 namespace fs = std::filesystem;
 
 namespace {
@@ -83,18 +85,6 @@ PlotSeries make_series(const std::string& label, std::vector<double> x, std::vec
   s.lines = lines;
   s.markers = markers;
   return s;
-}
-
-/// Expects `f` to throw Error with `status` and a message containing `needle`.
-template <class F>
-void expect_error(F&& f, Status status, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no Error thrown (expected " << status_name(status) << ")";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.status(), status) << e.what();
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
 }
 
 /// Expects every drawable point (x[i], y[i]) of series k to show the series' colour.
@@ -339,8 +329,8 @@ TEST_F(LinePlotTest, SinglePointPlotsAreValid) {
 TEST_F(LinePlotTest, InvalidSpecsAreRejectedWithoutWritingAFile) {
   const std::string file = path("plot.png");
   const auto rejects = [&](const PlotSpec& spec, const std::string& needle) {
-    expect_error([&] { write_line_plot_png(spec, file); }, Status::invalid_argument, needle);
-    expect_error([&] { layout_plot(spec); }, Status::invalid_argument, needle);
+    expect_error([&] { write_line_plot_png(spec, file); }, Status::invalid_argument, {needle});
+    expect_error([&] { layout_plot(spec); }, Status::invalid_argument, {needle});
   };
   rejects(PlotSpec{}, "no series");
   PlotSpec mismatched;
@@ -364,7 +354,7 @@ TEST_F(LinePlotTest, InvalidSpecsAreRejectedWithoutWritingAFile) {
 
 TEST_F(LinePlotTest, UnwritablePathIsAnIoErrorLeavingNoFile) {
   const std::string file = path("missing_directory/plot.png");
-  expect_error([&] { write_line_plot_png(two_series_log_log(), file); }, Status::io_error, file);
+  expect_error([&] { write_line_plot_png(two_series_log_log(), file); }, Status::io_error, {file});
   EXPECT_FALSE(fs::exists(file));
   EXPECT_FALSE(fs::exists(file + ".partial"));
   EXPECT_TRUE(dir_is_empty());
@@ -375,7 +365,7 @@ TEST_F(LinePlotTest, FailedRenameRemovesThePartialFile) {
   fs::create_directory(target);
   fs::create_directory(target + "/keep");  // a non-empty directory: rename(2) always fails
   expect_error([&] { write_line_plot_png(two_series_log_log(), target); }, Status::io_error,
-               target);
+               {target});
   EXPECT_TRUE(fs::is_directory(target + "/keep"));
   EXPECT_FALSE(fs::exists(target + ".partial"));
 }

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include "common/constants.hpp"
 #include "contact/contact_potential.hpp"
 #include "mesh/intersection_check.hpp"
 #include "mesh/mesh_generators.hpp"
@@ -17,7 +18,7 @@ namespace progsim::contact_scenes {
 /// y axis at height y.
 inline TriangleMesh horizontal_cloth(double size, int n, double y) {
   TriangleMesh mesh = make_grid(size, size, n, n);
-  const Eigen::AngleAxisd to_horizontal(-0.5 * 3.14159265358979323846, Vec3::UnitX());
+  const Eigen::AngleAxisd to_horizontal(-0.5 * kPi, Vec3::UnitX());
   for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
     const Vec3 p = to_horizontal * mesh.vertices.row(i).transpose();
     mesh.vertices.row(i) = (p + Vec3(-0.5 * size, y, 0.5 * size)).transpose();

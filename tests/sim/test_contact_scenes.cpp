@@ -87,7 +87,7 @@ TEST(ContactScenes, ClothTwistedTwoTurnsStaysIntersectionFree) {
   for (Effect e : {Effect::membrane, Effect::bending, Effect::contact}) scene.effects.enable(e);
   scene.bodies.push_back({"strip", make_grid(1.0, 0.25, 24, 6), cloth_material(0.0), 0.0, 0.0});
   scene.contact.dhat = 2e-3;
-  const double turns = 2.0, omega = turns * 2.0 * 3.14159265358979323846;
+  const double turns = 2.0, omega = turns * 2.0 * kPi;
   for (int end = 0; end < 2; ++end) {
     Handle h;
     const Positions& v = scene.bodies[0].mesh.vertices;

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <iostream>
 
+#include "common/constants.hpp"
 #include "energy/strain_limit.hpp"
 #include "sim/contact_scene_support.hpp"
 
@@ -13,7 +14,6 @@ using namespace progsim::contact_scenes;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kGravity = 9.81;
 
 struct Incline {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "common/constants.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "sim/direct_simulation.hpp"
 
@@ -67,7 +68,7 @@ double min_angle_degrees(const TriangleMesh& mesh) {
       const Vec3 b = mesh.vertices.row(mesh.faces(f, (k + 1) % 3));
       const Vec3 c = mesh.vertices.row(mesh.faces(f, (k + 2) % 3));
       smallest = std::min(smallest,
-                          std::acos((b - a).normalized().dot((c - a).normalized())) * 180.0 / M_PI);
+                          std::acos((b - a).normalized().dot((c - a).normalized())) * 180.0 / kPi);
     }
   return smallest;
 }

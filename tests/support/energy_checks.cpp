@@ -1,7 +1,10 @@
 #include "support/energy_checks.hpp"
 
+#include <gtest/gtest.h>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -59,6 +62,21 @@ Eigen::MatrixXd assembled_hessian(const EnergyTerm& term, const Vector& x, bool 
 double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double floor) {
   const double scale = std::max(b.cwiseAbs().maxCoeff(), floor);
   return (a - b).cwiseAbs().maxCoeff() / scale;
+}
+
+void expect_derivatives_match_finite_differences(const EnergyTerm& term, const Vector& x,
+                                                 double step, double tolerance, double floor,
+                                                 double symmetry) {
+  ASSERT_TRUE(std::isfinite(term.value(x)));
+  const Vector g = analytic_gradient(term, x);
+  EXPECT_TRUE(g.allFinite());
+  EXPECT_LT(relative_error(g, finite_difference_gradient(term, x, step), floor), tolerance)
+      << "gradient";
+  const Eigen::MatrixXd h = assembled_hessian(term, x, false);
+  ASSERT_TRUE(h.allFinite());
+  EXPECT_LT(relative_error(h, finite_difference_hessian(term, x, step), floor), tolerance)
+      << "Hessian";
+  EXPECT_LE((h - h.transpose()).cwiseAbs().maxCoeff(), symmetry * h.cwiseAbs().maxCoeff());
 }
 
 Mat3 random_rotation(unsigned seed) {

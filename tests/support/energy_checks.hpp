@@ -24,6 +24,14 @@ Eigen::MatrixXd assembled_hessian(const EnergyTerm& term, const Vector& x, bool 
 /// Max |a − b| / max(‖b‖∞, floor): relative error with an absolute floor.
 double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double floor);
 
+/// Expects the term's value, gradient and assembled (unprojected) Hessian at x to be finite,
+/// the gradient and Hessian to match central finite differences of step `step` (relative_error
+/// with `floor` below `tolerance`), and the Hessian to be symmetric to `symmetry` times its
+/// largest entry (0: exactly).
+void expect_derivatives_match_finite_differences(const EnergyTerm& term, const Vector& x,
+                                                 double step, double tolerance,
+                                                 double floor = 1e-12, double symmetry = 1e-12);
+
 /// A random rotation matrix (uniform on SO(3)) from a seed.
 Mat3 random_rotation(unsigned seed);
 
