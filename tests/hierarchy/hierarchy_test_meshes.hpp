@@ -1,8 +1,6 @@
 #pragma once
 /// @file Meshes and a distance shared by the hierarchy tests.
-#include <Eigen/Geometry>
 #include <cmath>
-#include <random>
 
 #include "mesh/mesh_generators.hpp"
 
@@ -16,14 +14,6 @@ inline TriangleMesh dome(int n) {
     mesh.vertices.row(v) << x, y, std::sqrt(1.0 - x * x - y * y);
   }
   return mesh;
-}
-
-/// A random rotation (uniform on SO(3): a normalized Gaussian quaternion) drawn from rng.
-inline Mat3 random_rotation(std::mt19937& rng) {
-  std::normal_distribution<double> normal;
-  return Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng))
-      .normalized()
-      .toRotationMatrix();
 }
 
 /// max over rows of ‖a_i − b_i‖ (m).

@@ -23,6 +23,7 @@
 #include "mesh/mesh_test_support.hpp"
 #include "mesh/mesh_topology.hpp"
 #include "mesh/mesh_validation.hpp"
+#include "support/energy_checks.hpp"
 
 using namespace progsim;
 using namespace progsim::test_support;

@@ -19,6 +19,7 @@
 #include "hierarchy/hierarchy_test_meshes.hpp"
 #include "hierarchy/shell_prolongation.hpp"
 #include "mesh/mesh_generators.hpp"
+#include "support/energy_checks.hpp"
 #include "support/expect_error.hpp"
 
 using namespace progsim;

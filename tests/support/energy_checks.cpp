@@ -79,11 +79,15 @@ void expect_derivatives_match_finite_differences(const EnergyTerm& term, const V
   EXPECT_LE((h - h.transpose()).cwiseAbs().maxCoeff(), symmetry * h.cwiseAbs().maxCoeff());
 }
 
-Mat3 random_rotation(unsigned seed) {
-  std::mt19937 rng(seed);
+Mat3 random_rotation(std::mt19937& rng) {
   std::normal_distribution<double> normal;
   Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
   return q.normalized().toRotationMatrix();
+}
+
+Mat3 random_rotation(unsigned seed) {
+  std::mt19937 rng(seed);
+  return random_rotation(rng);
 }
 
 std::vector<ShellMaterial> varied_materials(int num_faces, unsigned seed) {

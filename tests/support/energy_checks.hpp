@@ -2,6 +2,7 @@
 /// @file Test helpers that check an EnergyTerm against finite differences, independently of
 /// the term's own derivative code.
 #include <Eigen/Sparse>
+#include <random>
 #include <vector>
 
 #include "energy/energy_term.hpp"
@@ -32,7 +33,10 @@ void expect_derivatives_match_finite_differences(const EnergyTerm& term, const V
                                                  double step, double tolerance,
                                                  double floor = 1e-12, double symmetry = 1e-12);
 
-/// A random rotation matrix (uniform on SO(3)) from a seed.
+/// A random rotation matrix (uniform on SO(3): a normalized Gaussian quaternion) drawn from rng.
+Mat3 random_rotation(std::mt19937& rng);
+
+/// random_rotation drawn from a generator seeded with `seed`.
 Mat3 random_rotation(unsigned seed);
 
 /// Materials that differ from face to face (E, ν, t drawn from a seed), so a mix-up of
