@@ -32,6 +32,8 @@ CommandResult run_cli(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
 
+}  // namespace
+
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -70,6 +72,8 @@ class Cli : public ::testing::Test {
 
   fs::path dir_;
 };
+
+namespace {
 
 const char* const kGrid = R"({"generator": "grid", "width": 1, "height": 1, "nx": 4, "ny": 4})";
 

@@ -154,6 +154,8 @@ void expect_rejected(const std::function<void(MeshHierarchy&)>& change,
   expect_error([&] { check_hierarchy_structure(h); }, Status::invalid_argument, parts);
 }
 
+}  // namespace
+
 class HierarchyIo : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -185,6 +187,8 @@ class HierarchyIo : public ::testing::Test {
 
   fs::path dir_;
 };
+
+namespace {
 
 /// `bytes` with the 8 bytes at `offset` replaced by `value` (little-endian).
 std::string with_int64(std::string bytes, std::size_t offset, std::int64_t value) {

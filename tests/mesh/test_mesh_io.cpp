@@ -40,6 +40,8 @@ TriangleMesh irregular_sphere() {
   return mesh;
 }
 
+}  // namespace
+
 class MeshIo : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -59,6 +61,8 @@ class MeshIo : public ::testing::Test {
 
   fs::path dir_;
 };
+
+namespace {
 
 void expect_read_error(const std::string& name, Status status,
                        std::initializer_list<std::string> parts) {

@@ -48,6 +48,8 @@ struct GoodMesh {
   int boundary_edges;
 };
 
+}  // namespace
+
 class RealMeshes : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -60,8 +62,6 @@ class RealMeshes : public ::testing::Test {
 
   const fs::path folder_ = mesh_folder();
 };
-
-}  // namespace
 
 TEST_F(RealMeshes, WellFormedModelsValidateWithTheTopologyOfTheirShape) {
   const GoodMesh meshes[] = {

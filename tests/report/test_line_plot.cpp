@@ -109,6 +109,8 @@ class ReleaseCairoCaches : public ::testing::Environment {
 ::testing::Environment* const release_cairo_caches =
     ::testing::AddGlobalTestEnvironment(new ReleaseCairoCaches);
 
+}  // namespace
+
 /// Tests get their own fresh directory under the system temporary directory.
 class LinePlotTest : public ::testing::Test {
  protected:
@@ -128,6 +130,8 @@ class LinePlotTest : public ::testing::Test {
 
   fs::path dir_;
 };
+
+namespace {
 
 /// Accuracy-vs-time style data: two series on log-log axes.
 PlotSpec two_series_log_log() {
