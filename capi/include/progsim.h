@@ -253,10 +253,13 @@ typedef enum ps_effect {
  * field group_name is parameter group.name.
  */
 typedef struct ps_sim_def {
-  double simulation_time_step;          /**< s, (0, 100]; default 0.01 */
-  double simulation_duration;           /**< s, (0, 1e7]; default 1 (CLI runs only) */
-  int32_t simulation_output_every;      /**< steps, ≥ 1; default 1 (CLI runs only) */
-  double material_youngs_modulus;       /**< Pa, (0, 1e13]; default 1e6 */
+  double simulation_time_step;     /**< s, (0, 100]; default 0.01 */
+  double simulation_duration;      /**< s, (0, 1e7]; default 1 (CLI runs only) */
+  int32_t simulation_output_every; /**< steps, ≥ 1; default 1 (CLI runs only) */
+  double material_youngs_modulus;  /**< Pa, (0, 1e13]; default 1e6 */
+  /** Pa, [0, 1e13]; default 0: the bending term's own Young's modulus, 0 for
+   *  material_youngs_modulus (cloth often bends stiffer or softer than it stretches) */
+  double material_bending_youngs_modulus;
   double material_poisson_ratio;        /**< 1, (−1, 0.5); default 0.3 */
   double material_thickness;            /**< m, (0, 10]; default 1e-3 */
   double material_density;              /**< kg/m³, (0, 1e6]; default 200 */

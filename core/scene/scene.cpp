@@ -26,6 +26,7 @@ void check(const char* group, const char* name, double value) {
 
 void validate_material(const ShellMaterial& m) {
   check("material", "youngs_modulus", m.youngs_modulus);
+  check("material", "bending_youngs_modulus", m.bending_youngs_modulus);
   check("material", "poisson_ratio", m.poisson_ratio);
   check("material", "thickness", m.thickness);
   check("material", "density", m.density);

@@ -162,11 +162,12 @@ void apply_transform(const Json& j, const std::string& where, Positions& p) {
 }
 
 ShellMaterial material(const Json& j, const std::string& where) {
-  expect_keys(
-      j, where,
-      {"youngs_modulus", "poisson_ratio", "thickness", "density", "friction", "strain_limit"});
+  expect_keys(j, where,
+              {"youngs_modulus", "bending_youngs_modulus", "poisson_ratio", "thickness", "density",
+               "friction", "strain_limit"});
   ShellMaterial m;
   m.youngs_modulus = parameter(j, "material", "youngs_modulus", where);
+  m.bending_youngs_modulus = parameter(j, "material", "bending_youngs_modulus", where);
   m.poisson_ratio = parameter(j, "material", "poisson_ratio", where);
   m.thickness = parameter(j, "material", "thickness", where);
   m.density = parameter(j, "material", "density", where);

@@ -30,6 +30,8 @@ const std::vector<Accessor>& accessors() {
        [](Scene& s) { return std::vector<double*>{&s.solver.tolerance}; }},
       {"material.youngs_modulus",
        [](Scene& s) { return material_slots(s, &ShellMaterial::youngs_modulus); }},
+      {"material.bending_youngs_modulus",
+       [](Scene& s) { return material_slots(s, &ShellMaterial::bending_youngs_modulus); }},
       {"material.poisson_ratio",
        [](Scene& s) { return material_slots(s, &ShellMaterial::poisson_ratio); }},
       {"material.thickness", [](Scene& s) { return material_slots(s, &ShellMaterial::thickness); }},

@@ -234,6 +234,21 @@ TEST(HingeBending, StiffnessFollowsTheDiscreteShellsFormula) {
   EXPECT_NEAR(term.value(x), term.stiffness(0) * 0.49, 1e-15);
 }
 
+TEST(HingeBending, BendingYoungsModulusReplacesEInTheStiffness) {
+  // PSQ supplement Table 1 gives cloth E_mem and E_bend apart: k = E_b t³/(24(1−ν²)).
+  const TriangleMesh rest = single_hinge(0.0);
+  std::vector<ShellMaterial> materials(2);
+  for (ShellMaterial& m : materials) {
+    m.youngs_modulus = 8.21e3;
+    m.bending_youngs_modulus = 8.21e4;
+  }
+  const HingeBending term = make_term(rest, materials);
+  EXPECT_NEAR(term.stiffness(0), 8.21e4 * 1e-9 / (24 * (1 - 0.09)), 1e-18);
+  materials[0].bending_youngs_modulus = 0.0;  // 0: the face bends with its E
+  const HingeBending mixed = make_term(rest, materials);
+  EXPECT_NEAR(mixed.stiffness(0), 0.5 * (8.21e3 + 8.21e4) * 1e-9 / (24 * (1 - 0.09)), 1e-18);
+}
+
 TEST(HingeBending, SheetRolledIntoCylinderVersusContinuum) {
   // Rest flat, current a cylinder of radius R (isometric, so all energy is bending).
   // Continuum plate: (D/2) ∫ κ² dA = (D/2) W L / R², D = E t³/(12(1−ν²)) = 2k.

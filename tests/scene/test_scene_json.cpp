@@ -54,12 +54,14 @@ TEST(SceneJson, BundledScenesParse) {
 
 TEST(SceneJson, ReadsMaterialsHandlesAndDefaults) {
   const Scene s =
-      parse_scene(scene_text(R"(, "material": {"thickness": 0.002, "youngs_modulus": 3e6})",
+      parse_scene(scene_text(R"(, "material": {"thickness": 0.002, "youngs_modulus": 3e6,
+                                                "bending_youngs_modulus": 4e7})",
                              R"(, "handles": [{"body": "sheet", "vertices": [0, 3],
                                               "motion": {"velocity": [0, 1, 0]}}])"),
                   ".");
   EXPECT_EQ(s.bodies[0].material.thickness, 0.002);
   EXPECT_EQ(s.bodies[0].material.youngs_modulus, 3e6);
+  EXPECT_EQ(s.bodies[0].material.bending_youngs_modulus, 4e7);
   EXPECT_EQ(s.bodies[0].material.poisson_ratio,
             find_parameter("material", "poisson_ratio").default_value);
   ASSERT_EQ(s.handles.size(), 1u);
@@ -90,6 +92,8 @@ TEST(SceneJson, ReadsTheSolverSection) {
 TEST(SceneJson, ShellMaterialDefaultsAgreeWithTheParameterTable) {
   const ShellMaterial m;
   EXPECT_EQ(m.youngs_modulus, find_parameter("material", "youngs_modulus").default_value);
+  EXPECT_EQ(m.bending_youngs_modulus,
+            find_parameter("material", "bending_youngs_modulus").default_value);
   EXPECT_EQ(m.poisson_ratio, find_parameter("material", "poisson_ratio").default_value);
   EXPECT_EQ(m.thickness, find_parameter("material", "thickness").default_value);
   EXPECT_EQ(m.density, find_parameter("material", "density").default_value);
@@ -122,6 +126,8 @@ TEST(SceneJson, RejectsOutOfRangeMaterials) {
                      "poisson_ratio = 0.5 is invalid");
   expect_scene_error(scene_text(R"(, "material": {"poisson_ratio": 0.7})"), "(-1, 0.5)");
   expect_scene_error(scene_text(R"(, "material": {"youngs_modulus": 0})"), "youngs_modulus");
+  expect_scene_error(scene_text(R"(, "material": {"bending_youngs_modulus": -1})"),
+                     "bodies[0].material.bending_youngs_modulus");
   expect_scene_error(scene_text(R"(, "material": {"density": "heavy"})"), "must be a number");
 }
 

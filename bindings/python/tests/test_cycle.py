@@ -119,6 +119,7 @@ def test_constructor_parameters_reach_the_simulation(small):
         small,
         time_step=0.005,
         youngs_modulus=2e5,
+        bending_youngs_modulus=3e6,
         poisson_ratio=0.25,
         thickness=2e-3,
         density=300,
@@ -129,6 +130,7 @@ def test_constructor_parameters_reach_the_simulation(small):
     ) as sim:
         assert sim.get_param("simulation.time_step") == 0.005
         assert sim.get_param("material.youngs_modulus") == 2e5
+        assert sim.get_param("material.bending_youngs_modulus") == 3e6
         assert sim.get_param("material.poisson_ratio") == 0.25
         assert sim.get_param("material.thickness") == 2e-3
         assert sim.get_param("material.density") == 300

@@ -192,6 +192,7 @@ class Simulation(NativeObject):
         duration: Optional[float] = None,
         output_every: Optional[int] = None,
         youngs_modulus: Optional[float] = None,
+        bending_youngs_modulus: Optional[float] = None,
         poisson_ratio: Optional[float] = None,
         thickness: Optional[float] = None,
         density: Optional[float] = None,
@@ -216,6 +217,8 @@ class Simulation(NativeObject):
             duration: s, in (0, 1e7]; default 1 (used by CLI runs only).
             output_every: steps, >= 1; default 1 (used by CLI runs only).
             youngs_modulus: Pa, in (0, 1e13]; default 1e6.
+            bending_youngs_modulus: Pa, in [0, 1e13]; default 0: the bending term's own
+                Young's modulus (0: ``youngs_modulus``).
             poisson_ratio: dimensionless, in (-1, 0.5); default 0.3.
             thickness: m, in (0, 10]; default 1e-3.
             density: kg/m³, in (0, 1e6]; default 200.
@@ -252,6 +255,7 @@ class Simulation(NativeObject):
             "duration": duration,
             "output_every": output_every,
             "youngs_modulus": youngs_modulus,
+            "bending_youngs_modulus": bending_youngs_modulus,
             "poisson_ratio": poisson_ratio,
             "thickness": thickness,
             "density": density,

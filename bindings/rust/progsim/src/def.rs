@@ -245,6 +245,9 @@ pub struct SimulationDef {
     pub time_step: f64,
     /// Young's modulus E, Pa, in (0, 1e13]; default 1e6 (`material.youngs_modulus`).
     pub youngs_modulus: f64,
+    /// Young's modulus of the bending term alone, Pa, in [0, 1e13]; default 0 = `youngs_modulus`
+    /// (`material.bending_youngs_modulus`).
+    pub bending_youngs_modulus: f64,
     /// Poisson ratio ν, dimensionless, in (−1, 0.5); default 0.3 (`material.poisson_ratio`).
     pub poisson_ratio: f64,
     /// Shell thickness, m, in (0, 10]; default 1e-3 (`material.thickness`).
@@ -309,6 +312,7 @@ impl Default for SimulationDef {
         SimulationDef {
             time_step: raw.simulation_time_step,
             youngs_modulus: raw.material_youngs_modulus,
+            bending_youngs_modulus: raw.material_bending_youngs_modulus,
             poisson_ratio: raw.material_poisson_ratio,
             thickness: raw.material_thickness,
             density: raw.material_density,
@@ -341,6 +345,7 @@ impl SimulationDef {
         let mut raw = raw_sim_def();
         raw.simulation_time_step = self.time_step;
         raw.material_youngs_modulus = self.youngs_modulus;
+        raw.material_bending_youngs_modulus = self.bending_youngs_modulus;
         raw.material_poisson_ratio = self.poisson_ratio;
         raw.material_thickness = self.thickness;
         raw.material_density = self.density;
@@ -527,6 +532,7 @@ mod tests {
         let def = SimulationDef::default();
         assert_eq!(def.time_step, 0.01);
         assert_eq!(def.youngs_modulus, 1e6);
+        assert_eq!(def.bending_youngs_modulus, 0.0);
         assert_eq!(def.poisson_ratio, 0.3);
         assert_eq!(def.thickness, 1e-3);
         assert_eq!(def.density, 200.0);

@@ -41,6 +41,8 @@ fn hanging_cloth_full_cycle() {
     assert_eq!(sim.param("material.thickness"), Ok(5e-4));
     sim.set_param("material.youngs_modulus", 2e5).unwrap();
     assert_eq!(sim.param("material.youngs_modulus"), Ok(2e5));
+    sim.set_param("material.bending_youngs_modulus", 3e6).unwrap();
+    assert_eq!(sim.param("material.bending_youngs_modulus"), Ok(3e6));
     sim.set_effect(Effect::Bending, false).unwrap();
     assert_eq!(sim.effects(), Effect::Membrane | Effect::Gravity);
     sim.set_effect(Effect::Bending, true).unwrap();
