@@ -332,7 +332,8 @@ StepRecord DirectSimulation::solve_at(double t, bool new_step) {
              solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
   if (fit_to_start_) restore_fitted(record);
   record.change_rms = (x_ - x_previous_).norm() / std::sqrt(x_.size() / 3.0);
-  record.equilibrium = !dynamic && record.script_reached >= 1.0 && at_rest(record);
+  record.equilibrium =
+      !dynamic && record.script_reached >= 1.0 && record.raised_limits == 0 && at_rest(record);
   if (dynamic) v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
   if (new_step) ++steps_taken_;
   record.step = steps_taken_;

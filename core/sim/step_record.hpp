@@ -29,12 +29,13 @@ struct StepRecord {
   /// RMS over the vertices of the change this solve made, ‖xᵗ⁺¹ − xᵗ‖₂/√n (m): PSQ
   /// Algorithm 1's d, scripted motion included.
   double change_rms = 0.0;
-  /// The state is an equilibrium of the loads (quasistatic scenes) and every scripted motion
-  /// arrived. A direct solve (any level) must meet the Newton tolerance; with PSQ eq. 1's
-  /// proximal term a converged solve is only a gradient-flow step, so there the tolerance must
-  /// hold before any Newton step. A preview (proxy) solve, capped at a few iterations, stops
-  /// stepping once its change is below the tolerance: ‖d‖₂ < √n_l h ε (PSQ §4.5, Algorithm 1
-  /// line 10, with h = 1 and ε = tolerance × the scene's length).
+  /// The state is an equilibrium of the loads (quasistatic scenes), every scripted motion
+  /// arrived and every face is back under its own strain limit (raised_limits = 0). A direct solve
+  /// (any level) must meet the Newton tolerance; with PSQ eq. 1's proximal term a converged solve
+  /// is only a gradient-flow step, so there the tolerance must hold before any Newton step. A
+  /// preview (proxy) solve, capped at a few iterations, stops stepping once its change is below the
+  /// tolerance: ‖d‖₂ < √n_l h ε (PSQ §4.5, Algorithm 1 line 10, with h = 1 and ε = tolerance × the
+  /// scene's length).
   bool equilibrium = false;
   /// Contact pairs whose offset is still lowered after a refinement that left them within
   /// their offsets (PSQ §4.4.3 relaxation by offset homotopy); 0 once the full offsets hold.

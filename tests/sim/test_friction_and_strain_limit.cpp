@@ -60,6 +60,26 @@ double downhill_speed(const DirectSimulation& sim, const Vec3& downhill) {
   return (as_positions(sim.velocities()) * downhill).mean();
 }
 
+/// A free 1 m square cloth (8 × 8 cells, strain limit 1.1), quasistatic over one step, whose
+/// column of vertices `column` (0: left edge, 8: right edge) moves `dx` metres along x.
+Scene edge_pulled_sheet(double dx, int column) {
+  Scene scene;
+  scene.name = "edge_pulled";
+  scene.mode = StepMode::quasistatic;
+  scene.time_step = 1.0;
+  scene.duration = 1.0;
+  for (Effect e : {Effect::membrane, Effect::bending, Effect::strain_limit})
+    scene.effects.enable(e);
+  ShellMaterial m = cloth_material(0.0);
+  m.strain_limit = 1.1;
+  scene.bodies.push_back({"cloth", make_grid(1.0, 1.0, 8, 8), m, 0.0, 0.0});
+  Handle edge;
+  for (int j = 0; j <= 8; ++j) edge.vertices.push_back(9 * j + column);
+  edge.motion.velocity = Vec3(dx, 0.0, 0.0);
+  scene.handles.push_back(edge);
+  return scene;
+}
+
 }  // namespace
 
 TEST(Friction, PlateSlidesDownAnInclineWithCoulombAcceleration) {
@@ -146,25 +166,30 @@ TEST(StrainLimit, HeavyHangingClothNeverExceedsItsLimit) {
   std::cout << "[ strain limit ] largest stretch " << limited_max << " (limit 1.06)" << std::endl;
 }
 
+TEST(StrainLimit, AStretchNoStateCanMeetIsNeverCalledAnEquilibrium) {
+  // Both side edges of a square cloth held, the right one pulled 0.2 m out in one quasistatic
+  // step: every row between them must stretch by at least 1.2 on average, past the limit 1.1.
+  // The raised limits cannot come down, so no solve may report an equilibrium.
+  Scene scene = edge_pulled_sheet(0.2, 8);
+  Handle left;
+  for (int j = 0; j <= 8; ++j) left.vertices.push_back(9 * j);
+  scene.handles.push_back(left);
+  DirectSimulation sim(scene);
+  StepRecord r = sim.step();
+  for (int k = 0; k < 20; ++k) {
+    EXPECT_GT(r.raised_limits, 0) << "solve " << k;
+    EXPECT_FALSE(r.equilibrium) << "solve " << k;
+    r = sim.settle();
+  }
+  EXPECT_TRUE(sim.dofs().allFinite());
+}
+
 TEST(StrainLimit, AHandleMovedBeyondTheLimitIsFollowedNotRefused) {
   // The left edge of a free square cloth jumps 0.2 m to the left in one quasistatic step: at
   // the step's start the first column of faces (0.125 m wide) is stretched to σ₁ ≈ 2.6, past
   // the limit 1.1, where the barrier is infinite. The limits are raised for the solve and come
   // back down as the cloth follows the edge.
-  Scene scene;
-  scene.name = "yanked_edge";
-  scene.mode = StepMode::quasistatic;
-  scene.time_step = 1.0;
-  scene.duration = 1.0;
-  for (Effect e : {Effect::membrane, Effect::bending, Effect::strain_limit})
-    scene.effects.enable(e);
-  ShellMaterial m = cloth_material(0.0);
-  m.strain_limit = 1.1;
-  scene.bodies.push_back({"cloth", make_grid(1.0, 1.0, 8, 8), m, 0.0, 0.0});
-  Handle edge;
-  for (int j = 0; j <= 8; ++j) edge.vertices.push_back(9 * j);
-  edge.motion.velocity = Vec3(-0.2, 0.0, 0.0);
-  scene.handles.push_back(edge);
+  Scene scene = edge_pulled_sheet(-0.2, 0);
   DirectSimulation sim(scene);
   StepRecord r = sim.step();
   EXPECT_NE(r.newton.stop, NewtonStop::non_finite);
