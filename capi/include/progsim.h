@@ -415,7 +415,8 @@ PS_API int32_t ps_sim_refine(ps_sim* sim);
 
 /**
  * Solves again at the current time and loads until the level is at equilibrium (a Newton
- * solve meets the tolerance) or `max_solves` solves were made: after a refinement or a
+ * solve meets the tolerance with every face under its own strain limit) or `max_solves` solves
+ * were made: after a refinement or a
  * parameter change. *equilibrium (nullable) receives 1 if reached, else 0. Progress phase
  * "settle". Errors: PS_ERROR_INVALID_ARGUMENT (max_solves < 1), PS_ERROR_CANCELLED,
  * PS_ERROR_NUMERICAL.
@@ -473,7 +474,7 @@ typedef struct ps_level_stats {
   int32_t settles;       /**< solves at a fixed time (ps_sim_settle()) */
   int32_t equilibrium;   /**< 1 if the last solve left an equilibrium (quasistatic: tolerance met
                           *  with the scripts arrived, before any Newton step with the proximal
-                          *  term); 0 for dynamic scenes */
+                          *  term, no strain limit still raised); 0 for dynamic scenes */
   double refine_seconds; /**< wall time refining the coarser level into this one, s */
   ps_refinement_stats refinement; /**< how the level's start was built */
   /** Contact pairs whose offset is still lowered after the last solve (where contact kept a

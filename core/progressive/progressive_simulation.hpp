@@ -67,7 +67,8 @@ class ProgressiveSimulation {
   /// Below the finest level with the preview's iteration cap, at the finest to convergence.
   StepRecord settle();
   /// Settles until the current level is at equilibrium (PSQ Algorithm 1: a solve that needs no
-  /// Newton step) or `max_solves` solves were made; returns whether equilibrium was reached.
+  /// Newton step, StepRecord::equilibrium) or `max_solves` solves were made; returns whether
+  /// equilibrium was reached.
   bool settle_to_equilibrium(int max_solves);
   /// Refines the current level l into l+1 toward the hierarchy's P^l_{l+1}(x_l) (PSQ eq. 7) and
   /// continues there at the same scene time. Without contact the level starts at P^l_{l+1}(x_l).

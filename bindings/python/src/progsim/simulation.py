@@ -591,7 +591,8 @@ class Simulation(NativeObject):
 
     def settle(self, max_solves: int = 100, progress: ProgressArg = False) -> bool:
         """Solves again at the current time and loads until the level is at equilibrium (a
-        Newton solve meets the tolerance) or ``max_solves`` solves were made.
+        Newton solve meets the tolerance with every face under its own strain limit) or
+        ``max_solves`` solves were made.
 
         Returns:
             Whether equilibrium was reached.

@@ -428,7 +428,8 @@ pub struct LevelStats {
     /// Solves at a fixed time ([`Simulation::settle`](crate::Simulation::settle)).
     pub settles: usize,
     /// Whether the last solve left an equilibrium (quasistatic scenes: the tolerance met with
-    /// the scripts arrived, before any Newton step with the proximal term).
+    /// the scripts arrived, before any Newton step with the proximal term, no strain limit
+    /// still raised).
     pub equilibrium: bool,
     /// Wall time refining the coarser level into this one, s.
     pub refine_seconds: f64,
