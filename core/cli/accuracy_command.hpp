@@ -15,6 +15,7 @@ struct AccuracyCommand {
   int max_settles = 500;
   std::vector<int> direct_levels;  ///< empty: every level
   double direct_time_ratio = 0.0;  ///< 0: direct solves run to the end
+  bool of_preview = false;         ///< the ratio multiplies the preview's time, not the pipeline's
   bool quiet = false;
 };
 

@@ -257,15 +257,17 @@ AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgres
     if (level == finest) break;
   }
   report.obstacle_vertices = report.progressive_obstacle_vertices.back();  // as direct solves
-  const double time_limit = direct.time_ratio * report.rows.back().seconds;
+  const bool of_preview = direct.time_base == DirectSolves::TimeBase::preview;
+  report.direct_time_limit =
+      direct.time_ratio * (of_preview ? report.rows.front() : report.rows.back()).seconds;
   for (std::size_t k = 0; k < direct_order.size(); ++k) {
     const int level = direct_order[k];
     const Phase phase{progress, user, "direct level " + std::to_string(level),
                       (finest + 1.0 + k) / units, 1.0 / units};
     phase.begin();
     prolonged.emplace_back();
-    report.rows.push_back(
-        direct_row(scene, psq, level, max_settles, time_limit, phase, prolonged.back()));
+    report.rows.push_back(direct_row(scene, psq, level, max_settles, report.direct_time_limit,
+                                     phase, prolonged.back()));
   }
   const Positions reference = prolonged[finest];
   report.diagonal = bounding_box_diagonal(hierarchy->levels.back().rest.vertices);

@@ -44,6 +44,8 @@ struct AccuracyReport {
   /// a progressive collision object, PSQ §4.6); direct solves meet all `obstacle_vertices`.
   std::vector<int> progressive_obstacle_vertices;
   int obstacle_vertices = 0;  ///< the scene's obstacle vertices (0 without contact)
+  /// Seconds each direct solve could take (DirectSolves::time_ratio × its base); 0: no limit.
+  double direct_time_limit = 0.0;
 };
 
 /// Progress of a long run: the fraction of the whole run done and the phase, reported when a
@@ -58,9 +60,12 @@ using AccuracyProgress = bool (*)(void* user, double fraction, const char* phase
 struct DirectSolves {
   std::vector<int> levels;  ///< solved in this order; empty: every level, coarsest first
   /// A direct solve stops within the Newton iteration that takes it past this many times the
-  /// progressive time to the converged finest level (a load step stopped inside is not counted
-  /// in AccuracyRow::load_steps); 0: no limit.
+  /// progressive time of `time_base` (a load step stopped inside is not counted in
+  /// AccuracyRow::load_steps); 0: no limit.
   double time_ratio = 0.0;
+  /// What time_ratio multiplies: the progressive time to the converged finest level, or the
+  /// coarse preview's (a run that stops once the preview's speed-up is shown to be ≥ ratio).
+  enum class TimeBase { pipeline, preview } time_base = TimeBase::pipeline;
 };
 
 /// Runs the scene progressively through its load script (preview on level 0 to equilibrium,

@@ -204,8 +204,9 @@ TEST_F(Cli, AccuracyWritesTableCsvAndPlots) {
 TEST_F(Cli, AccuracySolvesDirectlyOnlyTheLevelsAskedForAndStopsThemAtTheTimeRatio) {
   const std::string scene = std::string(PROGSIM_SOURCE_DIR) + "/scenes/psq_plate_buckling.json";
   const fs::path out = dir_ / "plate";
-  const CommandResult r = run_cli("accuracy " + scene + " --out " + out.string() +
-                                  " --quiet --direct-levels 2 --direct-time-ratio 1e-9");
+  const CommandResult r =
+      run_cli("accuracy " + scene + " --out " + out.string() +
+              " --quiet --direct-levels 2 --direct-time-ratio 1e-9 --of-preview");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("lower bounds"), std::string::npos) << r.output;
   std::ifstream csv(out / "accuracy.csv");
