@@ -69,9 +69,7 @@ bool report_phase(void* run_timer, double fraction, const char* phase) {
 /// The direct solves of a run: every level, or with a time ratio the finest alone.
 DirectSolves direct_solves(const Scene& scene, double time_ratio, DirectSolves::TimeBase base) {
   if (time_ratio == 0.0) return {};
-  DirectSolves direct{{scene.progressive.num_coarse_levels()}, time_ratio};
-  direct.time_base = base;
-  return direct;
+  return {{scene.progressive.num_coarse_levels()}, time_ratio, base};
 }
 
 int run(int argc, char** argv) {

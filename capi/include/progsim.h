@@ -416,10 +416,9 @@ PS_API int32_t ps_sim_refine(ps_sim* sim);
 /**
  * Solves again at the current time and loads until the level is at equilibrium (a Newton
  * solve meets the tolerance with every face under its own strain limit) or `max_solves` solves
- * were made: after a refinement or a
- * parameter change. *equilibrium (nullable) receives 1 if reached, else 0. Progress phase
- * "settle". Errors: PS_ERROR_INVALID_ARGUMENT (max_solves < 1), PS_ERROR_CANCELLED,
- * PS_ERROR_NUMERICAL.
+ * were made: after a refinement or a parameter change. *equilibrium (nullable) receives 1 if
+ * reached, else 0. Progress phase "settle". Errors: PS_ERROR_INVALID_ARGUMENT (max_solves < 1),
+ * PS_ERROR_CANCELLED, PS_ERROR_NUMERICAL.
  */
 PS_API int32_t ps_sim_settle(ps_sim* sim, int32_t max_solves, int32_t* equilibrium);
 

@@ -34,8 +34,9 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommand& options) {
 
 int run_accuracy_command(const AccuracyCommand& options) {
   const Scene scene = load_scene_file(options.scene_path);
-  DirectSolves direct{options.direct_levels, options.direct_time_ratio};
-  if (options.of_preview) direct.time_base = DirectSolves::TimeBase::preview;
+  const DirectSolves direct{
+      options.direct_levels, options.direct_time_ratio,
+      options.of_preview ? DirectSolves::TimeBase::preview : DirectSolves::TimeBase::pipeline};
   ProgressBar bar("accuracy", 100);
   const AccuracyReport report = run_accuracy(scene, options.max_settles,
                                              options.quiet ? nullptr : draw_percent, &bar, direct);

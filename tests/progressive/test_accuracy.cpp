@@ -148,9 +148,8 @@ TEST(Accuracy, ADirectSolveStoppedAtItsTimeLimitIsReportedUnfinished) {
   EXPECT_NE(accuracy_markdown(r).find(">= "), std::string::npos);
   EXPECT_EQ(r.direct_time_limit, 1e-9 * r.rows[2].seconds);  // the pipeline's time
   // Relative to the preview: the limit follows level 0's time instead.
-  DirectSolves of_preview{{0}, 1e-9};
-  of_preview.time_base = DirectSolves::TimeBase::preview;
-  const AccuracyReport p = run_accuracy(small_plate(), 500, nullptr, nullptr, of_preview);
+  const AccuracyReport p = run_accuracy(small_plate(), 500, nullptr, nullptr,
+                                        {{0}, 1e-9, DirectSolves::TimeBase::preview});
   ASSERT_EQ(p.rows.size(), 4u);
   EXPECT_EQ(p.direct_time_limit, 1e-9 * p.rows[0].seconds);
   EXPECT_FALSE(p.rows[3].finished);
