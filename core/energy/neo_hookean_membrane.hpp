@@ -45,7 +45,7 @@ class NeoHookeanMembrane : public StencilTerm<3> {
   void element_hessian(int e, const LocalVector& xe, LocalMatrix& h) const override;
   void element_projected_hessian(int e, const LocalVector& xe, LocalMatrix& h) const override;
 
- private:
+ protected:
   /// Per-face constants. F = Σ_a x_a β_aᵀ (3×2), β_a the rows of `beta` (3×2).
   struct Element {
     Eigen::Matrix<double, 3, 2> beta;  ///< ∂F/∂x_a = I₃ ⊗ β_aᵀ; rows sum to zero
@@ -63,6 +63,8 @@ class NeoHookeanMembrane : public StencilTerm<3> {
   void pull_back(int e, const Matrix6& hf, LocalMatrix& h) const;
 
   std::vector<Element> elements_;
+
+ private:
   std::vector<double> rest_area_;
 };
 
