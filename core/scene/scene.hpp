@@ -89,6 +89,12 @@ enum class ProxyHessian {
   galerkin,  ///< Uᵀ ∇²Ψ_L U (offsets frozen, PSQ eq. 10): a finest assembly per iteration
 };
 
+/// The membrane energy of a shell.
+enum class MembraneModel {
+  neo_hookean,    ///< NeoHookeanMembrane
+  tension_field,  ///< its relaxation, free in compression (TensionFieldMembrane, Pipkin 1986)
+};
+
 /// How a scene is simulated progressively (PSQ, Zhang et al. 2023): the levels of its mesh
 /// hierarchy and how much work a preview step does.
 struct ProgressiveSettings {
@@ -106,6 +112,12 @@ struct ProgressiveSettings {
   /// lumped masses): an artificial gradient flow that keeps the Newton matrix definite for free
   /// bodies (a cloth dropped on a sphere). On every level and in the direct baseline alike.
   bool proximal = false;
+  /// The membrane the coarse levels' proxy evaluates on the finest mesh (and the level
+  /// preconditioner on the level's): neo_hookean is PSQ's Ψ_L (eq. 2); tension_field lets a
+  /// coarse preview shorten its faces at no cost, as wrinkles finer than its mesh would (our
+  /// extension, for flat cloth whose coarse levels lock). The finest level and every direct
+  /// solve keep neo_hookean.
+  MembraneModel preview_membrane = MembraneModel::neo_hookean;
 
   /// Levels below the scene's mesh that the settings ask for (the finest level's index).
   int num_coarse_levels() const {

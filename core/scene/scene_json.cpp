@@ -316,9 +316,10 @@ void solver(const Json& j, Scene& scene) {
 /// plus the preview and proxy options and "proximal".
 ProgressiveSettings progressive(const Json& j) {
   const std::string where = "progressive";
-  expect_keys(j, where,
-              {"coarse_levels", "coarsening_ratio", "levels", "preview_iterations",
-               "preview_tolerance", "prolongation", "proxy_hessian", "proximal"});
+  expect_keys(
+      j, where,
+      {"coarse_levels", "coarsening_ratio", "levels", "preview_iterations", "preview_tolerance",
+       "prolongation", "proxy_hessian", "proximal", "preview_membrane"});
   ProgressiveSettings p;
   if (j.contains("coarse_levels"))
     p.coarse_levels = integer(j.at("coarse_levels"), where + ".coarse_levels");
@@ -341,6 +342,12 @@ ProgressiveSettings progressive(const Json& j) {
     p.hessian = ProxyHessian::galerkin;
   else if (hessian != "level")
     scene_error(where + ".proxy_hessian", "unknown '" + hessian + "' (known: level, galerkin)");
+  const std::string membrane = j.value("preview_membrane", std::string("neo_hookean"));
+  if (membrane == "tension_field")
+    p.preview_membrane = MembraneModel::tension_field;
+  else if (membrane != "neo_hookean")
+    scene_error(where + ".preview_membrane",
+                "unknown '" + membrane + "' (known: neo_hookean, tension_field)");
   if (j.contains("levels")) {
     const Json& levels = j.at("levels");
     if (!levels.is_array()) scene_error(where + ".levels", "must be an array of vertex counts");

@@ -160,7 +160,8 @@ void DirectSimulation::add_elastics(Problem& problem,
     for (auto& term : own.terms) problem.add_term(std::move(term));
     return;
   }
-  ShellElastics finest = make_shell_elastics(scene_, *finest_, true);  // Ψ_L, PSQ eq. 2
+  const MembraneModel membrane = scene_.progressive.preview_membrane;
+  ShellElastics finest = make_shell_elastics(scene_, *finest_, true, membrane);  // Ψ_L, eq. 2
   if (finest.terms.empty()) return;
   pressures = finest.pressures;
   if (scene_.progressive.hessian == ProxyHessian::galerkin) {
@@ -168,7 +169,7 @@ void DirectSimulation::add_elastics(Problem& problem,
                                                          finest_->rest.vertices));
     return;
   }
-  ShellElastics own = make_shell_elastics(scene_, model_, false);  // the preconditioner
+  ShellElastics own = make_shell_elastics(scene_, model_, false, membrane);  // preconditioner
   pressures.insert(pressures.end(), own.pressures.begin(), own.pressures.end());
   problem.add_term(std::make_unique<ProlongedElastics>(level_.to_finest, std::move(finest.terms),
                                                        std::move(own.terms)));

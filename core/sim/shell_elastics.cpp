@@ -4,6 +4,7 @@
 #include "energy/hinge_bending.hpp"
 #include "energy/neo_hookean_membrane.hpp"
 #include "energy/pressure.hpp"
+#include "energy/tension_field_membrane.hpp"
 
 namespace progsim {
 namespace {
@@ -16,11 +17,15 @@ Faces body_faces(const ShellModel& model, int b) {
 
 }  // namespace
 
-ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, bool with_gravity) {
+ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, bool with_gravity,
+                                  MembraneModel membrane) {
   ShellElastics out;
   const EffectSet& fx = scene.effects;
   const Positions& rest = model.rest.vertices;
-  if (fx.has(Effect::membrane))
+  if (fx.has(Effect::membrane) && membrane == MembraneModel::tension_field)
+    out.terms.push_back(
+        std::make_unique<TensionFieldMembrane>(rest, model.rest.faces, model.face_materials));
+  else if (fx.has(Effect::membrane))
     out.terms.push_back(
         std::make_unique<NeoHookeanMembrane>(rest, model.rest.faces, model.face_materials));
   if (fx.has(Effect::bending))

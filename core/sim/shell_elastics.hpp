@@ -20,8 +20,10 @@ struct ShellElastics {
   std::vector<std::pair<Pressure*, int>> pressures;  ///< (term owned by `terms`, body index)
 };
 
-/// Membrane, bending and (with_gravity) gravity on `model`, and a pressure term per body with a
-/// non-zero pressure, as the scene's effects enable. Pressures start at 0 Pa.
-ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, bool with_gravity);
+/// Membrane (of the given model), bending and (with_gravity) gravity on `model`, and a pressure
+/// term per body with a non-zero pressure, as the scene's effects enable. Pressures start at
+/// 0 Pa.
+ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, bool with_gravity,
+                                  MembraneModel membrane = MembraneModel::neo_hookean);
 
 }  // namespace progsim

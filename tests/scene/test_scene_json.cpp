@@ -170,7 +170,7 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
       parse_scene(scene_text("", R"(, "progressive": {"coarse_levels": 2, "coarsening_ratio": 3.5,
                        "preview_iterations": 4, "preview_tolerance": 1e-4,
                        "prolongation": "direct", "proxy_hessian": "galerkin",
-                       "proximal": true})"),
+                       "proximal": true, "preview_membrane": "tension_field"})"),
                   ".");
   EXPECT_EQ(scene.progressive.coarse_levels, 2);
   EXPECT_EQ(scene.progressive.coarsening_ratio, 3.5);
@@ -179,11 +179,13 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
   EXPECT_EQ(scene.progressive.prolongation, ProxyProlongation::direct);
   EXPECT_EQ(scene.progressive.hessian, ProxyHessian::galerkin);
   EXPECT_TRUE(scene.progressive.proximal);
+  EXPECT_EQ(scene.progressive.preview_membrane, MembraneModel::tension_field);
   EXPECT_TRUE(scene.progressive.enabled());
   const Scene levels = parse_scene(scene_text("", R"(, "progressive": {"levels": [5, 9]})"), ".");
   EXPECT_EQ(levels.progressive.level_vertices, (std::vector<int>{5, 9}));
   EXPECT_EQ(levels.progressive.prolongation, ProxyProlongation::composed);
   EXPECT_FALSE(levels.progressive.proximal);
+  EXPECT_EQ(levels.progressive.preview_membrane, MembraneModel::neo_hookean);
   EXPECT_FALSE(parse_scene(scene_text(), ".").progressive.enabled());
 }
 
@@ -197,6 +199,8 @@ TEST(SceneJson, RejectsBadProgressiveSettings) {
                      "unknown 'cubic'");
   expect_scene_error(scene_text("", R"(, "progressive": {"proxy_hessian": "exact"})"),
                      "unknown 'exact'");
+  expect_scene_error(scene_text("", R"(, "progressive": {"preview_membrane": "linear"})"),
+                     "unknown 'linear' (known: neo_hookean, tension_field)");
   expect_scene_error(scene_text("", R"(, "progressive": {"preview_iterations": 0})"),
                      "preview_iterations");
   expect_scene_error(scene_text("", R"(, "progressive": {"proximal": 1})"), "true or false");
