@@ -7,6 +7,7 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "energy/stretch_spectrum.hpp"
 
 namespace progsim {
 namespace {
@@ -18,6 +19,10 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// g''(λ₁), g''(λ₂). Both errors are relative to the Hessian scale: the mean is off by
 /// ~(Δσ/d)², the divided difference by cancellation ~ε d/Δσ; ε^(1/3) ≈ 6e-6 balances them.
 constexpr double kIsotropicRatio = 1e-5;
+
+/// Growth of a held face's barrier stiffness per fit_limits call, and its cap.
+constexpr double kHeldScaleGrowth = 4.0;
+constexpr double kMaxHeldScale = 1e12;
 
 /// Vertex indices of the faces, validated, as stencils.
 std::vector<StencilTerm<3>::Stencil> face_stencils(const Positions& rest, const Faces& faces) {
@@ -32,32 +37,6 @@ std::vector<StencilTerm<3>::Stencil> face_stencils(const Positions& rest, const 
     }
   return stencils;
 }
-
-/// Singular values σ₁ ≥ σ₂ ≥ 0 of a 3×2 F and the right singular vectors v₁, v₂ (the
-/// eigenvectors of C = FᵀF = V diag(σ₁², σ₂²) Vᵀ), in closed form.
-struct Spectrum {
-  double sigma1, sigma2;
-  Vec2 v1, v2;
-
-  explicit Spectrum(const Mat32& f) {
-    const double c00 = f.col(0).squaredNorm(), c11 = f.col(1).squaredNorm();
-    const double c01 = f.col(0).dot(f.col(1));
-    const double mean = 0.5 * (c00 + c11);
-    const double half_gap = std::hypot(0.5 * (c00 - c11), c01);
-    const double lambda1 = mean + half_gap;
-    double lambda2 = mean - half_gap;
-    // Strongly anisotropic (or collapsed) F: mean − half_gap has cancelled; det C/λ₁ has not.
-    if (lambda2 < 0.5 * mean)
-      lambda2 = lambda1 > 0.0 ? f.col(0).cross(f.col(1)).squaredNorm() / lambda1 : 0.0;
-    sigma1 = std::sqrt(lambda1);
-    sigma2 = std::sqrt(std::min(lambda2, lambda1));
-    // Eigenvector of the larger eigenvalue of [[c00, c01], [c01, c11]] at angle θ with
-    // (cos 2θ, sin 2θ) ∥ ((c00 − c11)/2, c01); any θ at C = cI (atan2(0, 0) = 0).
-    const double angle = 0.5 * std::atan2(2.0 * c01, c00 - c11);
-    v1 = Vec2(std::cos(angle), std::sin(angle));
-    v2 = Vec2(-v1.y(), v1.x());
-  }
-};
 
 /// h(σ) = b(s − σ, ŝ) and its first two σ-derivatives, for a distance d = s − σ ∈ (0, ŝ).
 struct Barrier {
@@ -121,10 +100,20 @@ int StrainLimit::fit_limits(const Vector& x) {
 #pragma omp parallel for reduction(+ : raised) schedule(static) if (num_elements() >= kMinParallelItems)
   for (int e = 0; e < num_elements(); ++e) {
     Element& el = elements_[e];
-    const double sigma = Spectrum(deformation_gradient(el.beta, gather(e, x))).sigma1;
+    const double sigma = StretchSpectrum(deformation_gradient(el.beta, gather(e, x))).sigma1;
+    const bool was_raised = el.limit > el.own_limit;
+    // Held: the solve under a raised limit brought σ₁ down by less than a quarter of the gap
+    // it had to the limit, so a load holds the face near its barrier.
+    const bool held =
+        was_raised && el.fitted_stretch - sigma < 0.25 * (el.limit - el.fitted_stretch);
     const double lowered =
         el.limit > sigma ? sigma + 0.5 * (el.limit - sigma) : sigma + 0.5 * band_;
     el.limit = std::max(el.own_limit, lowered);
+    el.fitted_stretch = sigma;
+    if (el.limit <= el.own_limit)
+      el.scale = 1.0;
+    else if (held)
+      el.scale = std::min(el.scale * kHeldScaleGrowth, kMaxHeldScale);
     raised += el.limit > el.own_limit;
   }
   return raised;
@@ -146,26 +135,27 @@ double StrainLimit::max_stretch(const Vector& x) const {
                                    : stretch) \
     schedule(static) if (num_elements() >= kMinParallelItems)
   for (int e = 0; e < num_elements(); ++e)
-    stretch =
-        std::max(stretch, Spectrum(deformation_gradient(elements_[e].beta, gather(e, x))).sigma1);
+    stretch = std::max(
+        stretch, StretchSpectrum(deformation_gradient(elements_[e].beta, gather(e, x))).sigma1);
   return stretch;
 }
 
 double StrainLimit::element_value(int e, const LocalVector& xe) const {
   const double limit = elements_[e].limit;
-  const Spectrum spectrum(deformation_gradient(elements_[e].beta, xe));
+  const StretchSpectrum spectrum(deformation_gradient(elements_[e].beta, xe));
   const double d1 = limit - spectrum.sigma1, d2 = limit - spectrum.sigma2;
   if (d1 >= band_) return 0.0;        // both below the activation s − ŝ
   if (!(d1 > 0.0)) return kInfinity;  // at or beyond the limit (or non-finite)
   double sum = Barrier(d1, band_).value;
   if (d2 < band_) sum += Barrier(d2, band_).value;
-  return stiffness_ * elements_[e].area * sum;
+  return stiffness_ * elements_[e].weight() * sum;
 }
 
 namespace {
 
 /// g', g'' and the divided difference of g' at the singular values (both d_i > 0, d₁ < ŝ).
-SpectralDerivatives spectral_derivatives(const Spectrum& spectrum, double limit, double band) {
+SpectralDerivatives spectral_derivatives(const StretchSpectrum& spectrum, double limit,
+                                         double band) {
   SpectralDerivatives out{};
   const double sigma[2] = {spectrum.sigma1, spectrum.sigma2};
   for (int i = 0; i < 2; ++i) {
@@ -190,7 +180,7 @@ SpectralDerivatives spectral_derivatives(const Spectrum& spectrum, double limit,
 void StrainLimit::element_gradient(int e, const LocalVector& xe, LocalVector& g) const {
   const Element& el = elements_[e];
   const Mat32 f = deformation_gradient(elements_[e].beta, xe);
-  const Spectrum spectrum(f);
+  const StretchSpectrum spectrum(f);
   const double d1 = el.limit - spectrum.sigma1;
   if (d1 >= band_) {
     g.setZero();
@@ -205,14 +195,14 @@ void StrainLimit::element_gradient(int e, const LocalVector& xe, LocalVector& g)
   // ∂E/∂x_a = κĀ (∂Φ/∂F) β_a.
   const Mat2 s = sd.g1[0] * spectrum.v1 * spectrum.v1.transpose() +
                  sd.g1[1] * spectrum.v2 * spectrum.v2.transpose();
-  const Mat32 p = (2.0 * stiffness_ * el.area) * (f * s);
+  const Mat32 p = (2.0 * stiffness_ * el.weight()) * (f * s);
   for (int a = 0; a < 3; ++a) g.segment<3>(3 * a) = p * el.beta.row(a).transpose();
 }
 
 void StrainLimit::element_hessian(int e, const LocalVector& xe, LocalMatrix& h) const {
   const Element& el = elements_[e];
   const Mat32 f = deformation_gradient(elements_[e].beta, xe);
-  const Spectrum spectrum(f);
+  const StretchSpectrum spectrum(f);
   const double d1 = el.limit - spectrum.sigma1;
   if (d1 >= band_) {
     h.setZero();
@@ -223,7 +213,7 @@ void StrainLimit::element_hessian(int e, const LocalVector& xe, LocalMatrix& h) 
     return;
   }
   const SpectralDerivatives sd = spectral_derivatives(spectrum, el.limit, band_);
-  const double w = stiffness_ * el.area;
+  const double w = stiffness_ * el.weight();
   const Vec2& v1 = spectrum.v1;
   const Vec2& v2 = spectrum.v2;
   // d²Φ[dC, dC] = Σ_i g''(λ_i)(v_iᵀ dC v_i)² + 2 δ (v₁ᵀ dC v₂)²  (Daleckii–Krein /

@@ -68,7 +68,16 @@ class StrainLimit : public StencilTerm<3> {
   /// raised limit comes down halfway to the face's σ₁, never below the face's own s_f. Faces
   /// under their s_f keep it. Call after each solve until it returns 0; returns the faces whose
   /// limit is still raised. Not thread-safe with a concurrent evaluation.
+  ///
+  /// A load can hold a face near its raised limit: the barrier then balances the load at a gap
+  /// d ≈ κĀŝ²/f from the limit, the next solve moves the face by about d/2 and, once that is
+  /// below the Newton tolerance, by nothing (a sliver face that stayed at 1.16 over its 1.06
+  /// limit for hundreds of solves). A face whose σ₁ came down by less than a quarter of its
+  /// gap since the last call therefore gets its barrier stiffened fourfold (barrier_scale), which
+  /// widens d fourfold, until it moves; the scale returns to 1 with the face's own limit.
   int fit_limits(const Vector& x);
+  /// Multiplier of κ on face f (1 unless fit_limits stiffened a held face's barrier).
+  double barrier_scale(int f) const { return elements_[f].scale; }
   /// Rest area Ā of face f (m²).
   double rest_area(int f) const { return elements_[f].area; }
 
@@ -86,6 +95,10 @@ class StrainLimit : public StencilTerm<3> {
     double area;                       ///< Ā (m²)
     double limit;                      ///< the limit in force (s_f unless fit_limits raised it)
     double own_limit;                  ///< s_f
+    double scale = 1.0;                ///< multiplier of κ (fit_limits: held faces)
+    double fitted_stretch = 0.0;       ///< σ₁ at the last fit_limits call
+    /// Ā times the scale: the face's weight in κ Ā scale Σ_i b.
+    double weight() const { return area * scale; }
   };
 
   std::vector<Element> elements_;

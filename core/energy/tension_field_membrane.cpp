@@ -5,35 +5,21 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "energy/stretch_spectrum.hpp"
 
 namespace progsim {
 namespace {
-
-/// Singular values σ₁ ≥ σ₂ ≥ 0 of a 3×2 F and its right singular vectors v₁, v₂.
-struct Stretches {
-  double s1, s2;
-  Vec2 v1, v2;
-
-  explicit Stretches(const Mat32& f) {
-    const Mat2 c = f.transpose() * f;
-    const double radius = std::hypot(0.5 * (c(0, 0) - c(1, 1)), c(0, 1));
-    s1 = std::sqrt(0.5 * (c(0, 0) + c(1, 1)) + radius);
-    s2 = s1 > 0.0 ? f.col(0).cross(f.col(1)).norm() / s1 : 0.0;  // σ₁σ₂ = ‖f₁ × f₂‖
-    const double angle = 0.5 * std::atan2(2.0 * c(0, 1), c(0, 0) - c(1, 1));
-    v1 = Vec2(std::cos(angle), std::sin(angle));
-    v2 = Vec2(-v1.y(), v1.x());
-  }
-};
 
 enum class State { slack, wrinkled, taut };
 
 /// Pipkin's (1986) test: slack if σ₁ ≤ 1, wrinkled if ∂Ψ/∂σ₂ < 0, with σ₂ ∂Ψ/∂σ₂ = μ(σ₂² − 1)
 /// + λ ln(σ₁σ₂) for Ψ of NeoHookeanMembrane; taut otherwise.
-State state_of(const Stretches& s, double mu, double lambda) {
-  if (s.s1 <= 1.0) return State::slack;
-  if (s.s2 <= 0.0) return State::wrinkled;
-  return mu * (s.s2 * s.s2 - 1.0) + lambda * std::log(s.s1 * s.s2) < 0.0 ? State::wrinkled
-                                                                         : State::taut;
+State state_of(const StretchSpectrum& s, double mu, double lambda) {
+  if (s.sigma1 <= 1.0) return State::slack;
+  if (s.sigma2 <= 0.0) return State::wrinkled;
+  return mu * (s.sigma2 * s.sigma2 - 1.0) + lambda * std::log(s.sigma1 * s.sigma2) < 0.0
+             ? State::wrinkled
+             : State::taut;
 }
 
 /// Uniaxial tension at stretch σ₁ > 1: g(σ₁) = Ψ(σ₁, σ₂*) and its first two derivatives.
@@ -84,12 +70,12 @@ TensionFieldMembrane::TensionFieldMembrane(const Positions& rest, const Faces& f
 
 double TensionFieldMembrane::element_value(int e, const LocalVector& xe) const {
   const Element& el = elements_[e];
-  const Stretches s(deformation_gradient(el.beta, xe));
+  const StretchSpectrum s(deformation_gradient(el.beta, xe));
   const State state = state_of(s, el.mu, el.lambda);
   const double full = NeoHookeanMembrane::element_value(e, xe);
   if (state == State::taut) return full;
   const double relaxed =
-      state == State::slack ? 0.0 : el.weight * uniaxial(s.s1, el.mu, el.lambda).energy;
+      state == State::slack ? 0.0 : el.weight * uniaxial(s.sigma1, el.mu, el.lambda).energy;
   if (share_ == 0.0) return relaxed;                // ε Ψ would be 0 · ∞ on a collapsed face
   return (1.0 - share_) * relaxed + share_ * full;  // W_ε = (1 − ε) W + ε Ψ
 }
@@ -97,29 +83,29 @@ double TensionFieldMembrane::element_value(int e, const LocalVector& xe) const {
 void TensionFieldMembrane::element_gradient(int e, const LocalVector& xe, LocalVector& g) const {
   const Element& el = elements_[e];
   const Mat32 f = deformation_gradient(el.beta, xe);
-  const Stretches s(f);
+  const StretchSpectrum s(f);
   const State state = state_of(s, el.mu, el.lambda);
   NeoHookeanMembrane::element_gradient(e, xe, g);
   if (state == State::taut) return;
   scale_full_part(g);
   if (state == State::slack) return;
   // ∂W/∂F = g'(σ₁) u₁v₁ᵀ with u₁ = F v₁/σ₁; ∂E/∂x_a = t Ā (∂W/∂F) β_a.
-  const double slope = uniaxial(s.s1, el.mu, el.lambda).slope;
-  const Mat32 p = ((1.0 - share_) * slope / s.s1) * (f * s.v1) * s.v1.transpose();
+  const double slope = uniaxial(s.sigma1, el.mu, el.lambda).slope;
+  const Mat32 p = ((1.0 - share_) * slope / s.sigma1) * (f * s.v1) * s.v1.transpose();
   for (int v = 0; v < 3; ++v) g.segment<3>(3 * v) += el.weight * (p * el.beta.row(v).transpose());
 }
 
 NeoHookeanMembrane::Matrix6 TensionFieldMembrane::wrinkled_stress_derivative(int e, const Mat32& f,
                                                                              bool project) const {
   const Element& el = elements_[e];
-  const Stretches s(f);
-  const Uniaxial g = uniaxial(s.s1, el.mu, el.lambda);
-  const Vec3 u1 = f * s.v1 / s.s1;
+  const StretchSpectrum s(f);
+  const Uniaxial g = uniaxial(s.sigma1, el.mu, el.lambda);
+  const Vec3 u1 = f * s.v1 / s.sigma1;
   Vec3 u2 = f * s.v2;
   u2 -= u1.dot(u2) * u1;
   // A face collapsed to a segment has no u₂; any unit vector normal to u₁ gives the same
   // Hessian then (twist and flip share the eigenvalue g'/σ₁ with the out-of-plane mode).
-  u2 = u2.norm() > 1e-12 * s.s1 ? Vec3(u2.normalized()) : Vec3(u1.unitOrthogonal());
+  u2 = u2.norm() > 1e-12 * s.sigma1 ? Vec3(u2.normalized()) : Vec3(u1.unitOrthogonal());
   const Vec3 n = u1.cross(u2);
   Matrix6 hf = Matrix6::Zero();
   const auto add_mode = [&hf, project](double eigenvalue, const Mat32& mode) {
@@ -131,9 +117,11 @@ NeoHookeanMembrane::Matrix6 TensionFieldMembrane::wrinkled_stress_derivative(int
   // Ψ = σ₁): twist 1/(σ₁+σ₂), flip 1/(σ₁−σ₂), out-of-plane n v₁ᵀ 1/σ₁, the rest 0.
   constexpr double kInvSqrt2 = 0.70710678118654752440;
   add_mode(g.curve, u1 * s.v1.transpose());
-  add_mode(g.slope / (s.s1 + s.s2), kInvSqrt2 * (u1 * s.v2.transpose() - u2 * s.v1.transpose()));
-  add_mode(g.slope / (s.s1 - s.s2), kInvSqrt2 * (u1 * s.v2.transpose() + u2 * s.v1.transpose()));
-  add_mode(g.slope / s.s1, n * s.v1.transpose());
+  add_mode(g.slope / (s.sigma1 + s.sigma2),
+           kInvSqrt2 * (u1 * s.v2.transpose() - u2 * s.v1.transpose()));
+  add_mode(g.slope / (s.sigma1 - s.sigma2),
+           kInvSqrt2 * (u1 * s.v2.transpose() + u2 * s.v1.transpose()));
+  add_mode(g.slope / s.sigma1, n * s.v1.transpose());
   return hf;
 }
 
@@ -149,7 +137,7 @@ void TensionFieldMembrane::blended_hessian(int e, const LocalVector& xe, bool pr
                                            LocalMatrix& h) const {
   const Element& el = elements_[e];
   const Mat32 f = deformation_gradient(el.beta, xe);
-  const State state = state_of(Stretches(f), el.mu, el.lambda);
+  const State state = state_of(StretchSpectrum(f), el.mu, el.lambda);
   if (project)
     NeoHookeanMembrane::element_projected_hessian(e, xe, h);
   else

@@ -421,10 +421,9 @@ TEST(StrainLimit, RejectsBadArguments) {
 }
 
 TEST(StrainLimit, FitLimitsRaisesTheLimitOfAnOverstretchedFaceAndBringsItBack) {
-  Positions rest(3, 3);
-  rest << 0, 0, 0, 1, 0, 0, 0, 0.5, 0;
-  Faces faces(1, 3);
-  faces << 0, 1, 2;
+  const Triangle t;  // F = diag(σ₁, 1) stretches it to σ₁ = its first singular value
+  const Positions& rest = t.rest;
+  const Faces& faces = t.faces;
   StrainLimit term(rest, faces, {kLimit}, kBand, kStiffness);
   const Vector beyond = as_dofs(mapped(rest, stretch(1.2, 1.0, 0.0)));  // σ₁ = 1.2 > 1.06
   EXPECT_EQ(term.value(beyond), std::numeric_limits<double>::infinity());
@@ -443,4 +442,35 @@ TEST(StrainLimit, FitLimitsRaisesTheLimitOfAnOverstretchedFaceAndBringsItBack) {
   EXPECT_EQ(raised, 0);
   EXPECT_EQ(term.limit(0), kLimit);
   EXPECT_EQ(term.value(beyond), std::numeric_limits<double>::infinity());
+}
+
+TEST(StrainLimit, FitLimitsStiffensTheBarrierOfAFaceALoadHoldsAndResetsIt) {
+  const Triangle t;  // F = diag(σ₁, 1) stretches it to σ₁ = its first singular value
+  const Positions& rest = t.rest;
+  const Faces& faces = t.faces;
+  StrainLimit term(rest, faces, {kLimit}, kBand, kStiffness);
+  const auto at = [&](double sigma1) { return as_dofs(mapped(rest, stretch(sigma1, 1.0, 0.0))); };
+  ASSERT_EQ(term.fit_limits(at(1.2)), 1);  // raised: the barrier starts at scale 1
+  EXPECT_EQ(term.barrier_scale(0), 1.0);
+  // A face that came down by at least a quarter of its gap to the limit (ŝ/2 here) is moving.
+  ASSERT_EQ(term.fit_limits(at(1.2 - 0.3 * kBand)), 1);
+  EXPECT_EQ(term.barrier_scale(0), 1.0);
+  // Held where it was: each fit stiffens its barrier fourfold.
+  const double held = 1.2 - 0.3 * kBand;
+  for (double expected : {4.0, 16.0, 64.0}) {
+    ASSERT_EQ(term.fit_limits(at(held)), 1);
+    EXPECT_EQ(term.barrier_scale(0), expected);
+  }
+  // The energy is the barrier of a face with that limit and κ × scale.
+  StrainLimit reference(rest, faces, {term.limit(0)}, kBand, 64.0 * kStiffness);
+  const Vector x = at(held);
+  EXPECT_NEAR(term.value(x), reference.value(x), 1e-12 * reference.value(x));
+  EXPECT_LT(pt::relative_error(pt::analytic_gradient(term, x), pt::analytic_gradient(reference, x),
+                               1e-12),
+            1e-12);
+  // Back under its own limit: the scale returns to 1.
+  int raised = 1;
+  for (int k = 0; k < 10 && raised > 0; ++k) raised = term.fit_limits(at(1.0));
+  EXPECT_EQ(raised, 0);
+  EXPECT_EQ(term.barrier_scale(0), 1.0);
 }
