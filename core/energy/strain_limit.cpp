@@ -95,20 +95,26 @@ StrainLimit::StrainLimit(const Positions& rest, const Faces& faces, std::vector<
   }
 }
 
-int StrainLimit::fit_limits(const Vector& x) {
+int StrainLimit::fit_limits(const Vector& x, FitAfter after) {
   int raised = 0;
 #pragma omp parallel for reduction(+ : raised) schedule(static) if (num_elements() >= kMinParallelItems)
   for (int e = 0; e < num_elements(); ++e) {
     Element& el = elements_[e];
     const double sigma = StretchSpectrum(deformation_gradient(el.beta, gather(e, x))).sigma1;
-    const bool was_raised = el.limit > el.own_limit;
-    // Held: the solve under a raised limit brought σ₁ down by less than a quarter of the gap
-    // it had to the limit, so a load holds the face near its barrier.
-    const bool held =
-        was_raised && el.fitted_stretch - sigma < 0.25 * (el.limit - el.fitted_stretch);
+    // Held: a face still beyond its own limit that the solve, with the barrier acting (gap to
+    // the raised limit under ŝ), brought down by less than a quarter of that gap: a load holds
+    // it against the barrier.
+    const double gap = el.limit - el.fitted_stretch;
+    const bool held = after == FitAfter::solve && el.limit > el.own_limit &&
+                      sigma >= el.own_limit && gap < band_ &&
+                      el.fitted_stretch - sigma < 0.25 * gap;
     const double lowered =
         el.limit > sigma ? sigma + 0.5 * (el.limit - sigma) : sigma + 0.5 * band_;
-    el.limit = std::max(el.own_limit, lowered);
+    // A held face gets the gap ŝ/2 back instead of half its gap: a log barrier's Newton step is
+    // of the gap's size, so halving the gap of a face that does not move would shrink its steps
+    // below the Newton tolerance for good.
+    const double next = held ? sigma + 0.5 * band_ : lowered;
+    el.limit = std::max(el.own_limit, next);
     el.fitted_stretch = sigma;
     if (el.limit <= el.own_limit)
       el.scale = 1.0;

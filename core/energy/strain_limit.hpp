@@ -9,12 +9,13 @@
 namespace progsim {
 
 /// Strain-limiting barrier of a triangle mesh (C-IPC, Li, Kaufman & Jiang 2021, §5):
-///   E(x) = Σ_f Ā_f κ Σ_{i=1,2} b(s_f − σ_i,f, ŝ),
+///   E(x) = Σ_f Ā_f κ c_f Σ_{i=1,2} b(s_f − σ_i,f, ŝ),
 ///   b(d, d̂) = −(d − d̂)² ln(d/d̂) for 0 < d < d̂,  0 for d ≥ d̂,  +∞ for d ≤ 0,
 /// where σ₁ ≥ σ₂ are the singular values of the membrane deformation gradient F = D D̄⁻¹ (3×2)
 /// of face f (D = [x1−x0, x2−x0], D̄ the rest edges in a 2D frame of the rest triangle, as in
 /// NeoHookeanMembrane), s_f > 1 the face's strain limit, ŝ the activation band (the barrier acts
-/// once σ > s_f − ŝ) and κ the stiffness (Pa·m, energy per rest area).
+/// once σ > s_f − ŝ), κ the stiffness (Pa·m, energy per rest area) and c_f ≥ 1 the face's
+/// barrier scale (1 unless fit_limits stiffened a held face, see there).
 ///
 /// Values: a face with σ₁ ≥ s_f has infinite energy, so value() is +∞ (a line search rejects
 /// the step); the gradient and Hessian blocks of such a face are quiet NaN (as for a degenerate
@@ -62,6 +63,11 @@ class StrainLimit : public StencilTerm<3> {
   double band() const { return band_; }
   /// s_f of face f (raised by fit_limits() while a start beyond the limit is relaxed).
   double limit(int f) const { return elements_[f].limit; }
+  /// What moved the state since the last fit_limits call.
+  enum class FitAfter {
+    solve,   ///< a solve (or nothing yet): a face that did not come down is held
+    motion,  ///< prescribed motion (handles moved): no face is judged held
+  };
   /// Limit homotopy for a start beyond some faces' limits (a refined level, PSQ §4.4 and
   /// Algorithm 2's strain-limit relaxation): a face with σ₁ ≥ its limit gets the limit σ₁ + ŝ/2
   /// (inside the barrier's band, so it pulls the face back); on later calls, after a solve, a
@@ -70,12 +76,16 @@ class StrainLimit : public StencilTerm<3> {
   /// limit is still raised. Not thread-safe with a concurrent evaluation.
   ///
   /// A load can hold a face near its raised limit: the barrier then balances the load at a gap
-  /// d ≈ κĀŝ²/f from the limit, the next solve moves the face by about d/2 and, once that is
-  /// below the Newton tolerance, by nothing (a sliver face that stayed at 1.16 over its 1.06
-  /// limit for hundreds of solves). A face whose σ₁ came down by less than a quarter of its
-  /// gap since the last call therefore gets its barrier stiffened fourfold (barrier_scale), which
-  /// widens d fourfold, until it moves; the scale returns to 1 with the face's own limit.
-  int fit_limits(const Vector& x);
+  /// d ≈ κĀŝ²/f from the limit, and halving the gap of a face that does not move halves the
+  /// Newton steps (a log barrier's step is of the gap's size) until they fall below the Newton
+  /// tolerance and the face stops for good (faces next to the drape's pinned centre stayed at
+  /// stretch 1.12–1.16 over 1.06 for hundreds of solves). A face still beyond its own limit
+  /// whose σ₁ came down by less than a quarter of its gap (under ŝ) since the last call is
+  /// therefore held: its limit is set to σ₁ + ŝ/2 instead and its barrier stiffened fourfold
+  /// (barrier_scale), which widens d fourfold, until it moves; the scale returns to 1 with the
+  /// face's own limit. Only a call after a solve judges that (`after`): prescribed motion moves
+  /// faces by itself.
+  int fit_limits(const Vector& x, FitAfter after = FitAfter::solve);
   /// Multiplier of κ on face f (1 unless fit_limits stiffened a held face's barrier).
   double barrier_scale(int f) const { return elements_[f].scale; }
   /// Rest area Ā of face f (m²).

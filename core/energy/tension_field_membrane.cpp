@@ -29,14 +29,23 @@ struct Uniaxial {
   double curve;   ///< g'' = Ψ₁₁ − Ψ₁₂²/Ψ₂₂ (σ₂* follows σ₁)
 };
 
-/// σ² − 1 − 2 ln σ from a = ln σ, each axis's share of the neo-Hookean shear term.
+/// σ² − 1 − 2 ln σ = e^{2a} − 1 − 2a from a = ln σ, each axis's share of the neo-Hookean shear
+/// term; near a = 0 by its series Σ_{k≥2} (2a)^k/k!, whose terms do not cancel.
 double axis_shear(double a) {
-  return std::expm1(2.0 * a) - 2.0 * a;
+  if (std::abs(a) >= 0.1) return std::expm1(2.0 * a) - 2.0 * a;
+  double term = 2.0 * a * a, sum = 0.0;  // (2a)²/2!
+  for (int k = 3; k < 20; ++k) {
+    sum += term;
+    term *= 2.0 * a / k;
+  }
+  return sum;
 }
 
 Uniaxial uniaxial(double s1, double mu, double lambda) {
-  // σ₂* solves μ(σ₂² − 1) + λ ln(σ₁σ₂) = 0; in z = ln σ₂ the left side is convex and
-  // increasing and positive at z = 0, so Newton from z = 0 descends monotonically to the root.
+  // σ₂* solves μ(σ₂² − 1) + λ ln(σ₁σ₂) = 0. In z = ln σ₂ the left side is convex and, where
+  // Newton goes, increasing: everywhere for λ ≥ 0; for ν < 0 (λ < 0) the root lies at z > 0,
+  // where the slope 2μe^{2z} + λ ≥ 2μ + λ = E/(1 − ν²) > 0. So Newton from z = 0 lands right of
+  // the root after at most one step and then descends monotonically to it.
   const double a1 = std::log(s1);
   double z = 0.0;
   for (int k = 0; k < 60; ++k) {

@@ -268,7 +268,8 @@ void DirectSimulation::fit_limits_to_prescribed_motion() {
   // Handles moved faces next to them beyond their strain limit, where the barrier is infinite
   // (a twist's first free row lags the turned edge): their limits are raised and the following
   // solves bring them back down (StrainLimit::fit_limits, as for a refined start).
-  if (strain_limit_ && strain_limit_->fit_limits(x_) > 0) fit_to_start_ = true;
+  if (strain_limit_ && strain_limit_->fit_limits(x_, StrainLimit::FitAfter::motion) > 0)
+    fit_to_start_ = true;
 }
 
 void DirectSimulation::update_scene(Scene scene) {

@@ -455,11 +455,13 @@ TEST(StrainLimit, FitLimitsStiffensTheBarrierOfAFaceALoadHoldsAndResetsIt) {
   // A face that came down by at least a quarter of its gap to the limit (ŝ/2 here) is moving.
   ASSERT_EQ(term.fit_limits(at(1.2 - 0.3 * kBand)), 1);
   EXPECT_EQ(term.barrier_scale(0), 1.0);
-  // Held where it was: each fit stiffens its barrier fourfold.
+  // Held where it was: each fit stiffens its barrier fourfold and sets the limit ŝ/2 above the
+  // face (a log barrier's Newton step is of the gap's size).
   const double held = 1.2 - 0.3 * kBand;
   for (double expected : {4.0, 16.0, 64.0}) {
     ASSERT_EQ(term.fit_limits(at(held)), 1);
     EXPECT_EQ(term.barrier_scale(0), expected);
+    EXPECT_DOUBLE_EQ(term.limit(0), held + 0.5 * kBand);
   }
   // The energy is the barrier of a face with that limit and κ × scale.
   StrainLimit reference(rest, faces, {term.limit(0)}, kBand, 64.0 * kStiffness);
@@ -468,6 +470,12 @@ TEST(StrainLimit, FitLimitsStiffensTheBarrierOfAFaceALoadHoldsAndResetsIt) {
   EXPECT_LT(pt::relative_error(pt::analytic_gradient(term, x), pt::analytic_gradient(reference, x),
                                1e-12),
             1e-12);
+  EXPECT_LT(pt::relative_error(pt::assembled_hessian(term, x, false),
+                               pt::assembled_hessian(reference, x, false), 1e-12),
+            1e-12);
+  // Prescribed motion moves faces by itself: a fit after it judges no face held.
+  ASSERT_EQ(term.fit_limits(x, StrainLimit::FitAfter::motion), 1);
+  EXPECT_EQ(term.barrier_scale(0), 64.0);
   // Back under its own limit: the scale returns to 1.
   int raised = 1;
   for (int k = 0; k < 10 && raised > 0; ++k) raised = term.fit_limits(at(1.0));

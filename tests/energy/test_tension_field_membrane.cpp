@@ -4,6 +4,7 @@
 // projection, and a face collapsed to a segment.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -62,10 +63,10 @@ double golden_minimum(const std::function<double(double)>& f, double lo, double 
 }  // namespace
 
 TEST(TensionFieldMembrane, DerivativesMatchFiniteDifferencesInEveryState) {
-  // (σ₁, σ₂): wrinkled, wrinkled near collapse, taut, slack, for three Poisson ratios (ν = 0:
-  // uniaxial tension keeps σ₂* = 1).
+  // (σ₁, σ₂): wrinkled, wrinkled near collapse, taut, slack, for four Poisson ratios (ν = 0:
+  // uniaxial tension keeps σ₂* = 1; ν < 0: σ₂* > 1).
   const double states[][2] = {{1.3, 0.7}, {2.0, 0.5}, {1.4, 1e-2}, {1.2, 1.1}, {0.9, 0.6}};
-  for (double nu : {0.0, 0.3, 0.45})
+  for (double nu : {-0.3, 0.0, 0.3, 0.45})
     for (double share : {0.0, TensionFieldMembrane::kDefaultCompressionShare}) {
       const OneTriangle t(nu);
       const TensionFieldMembrane term(t.rest, t.faces, {t.material}, share);
@@ -114,18 +115,27 @@ TEST(TensionFieldMembrane, EnergyIsTheNeoHookeanMinimumOverLongerPrincipalStretc
 }
 
 TEST(TensionFieldMembrane, ProjectedHessianIsPsdAndExactWhereTheHessianIsPsd) {
+  // With ε = 0 a wrinkled face's exact Hessian is PSD (g'' > 0, g' > 0), so its projection must
+  // be the exact Hessian; with ε > 0 the share of Ψ adds the indefinite compressed modes.
   const OneTriangle t(0.3);
-  const TensionFieldMembrane term(t.rest, t.faces, {t.material});
-  for (unsigned seed = 1; seed <= 20; ++seed) {
-    SCOPED_TRACE(seed);
-    const double s1 = 0.6 + 0.1 * seed, s2 = 0.05 * seed;
-    const Vector x = t.state(std::max(s1, s2), std::min(s1, s2), seed);
-    const Eigen::MatrixXd exact = pt::assembled_hessian(term, x, false);
-    const Eigen::MatrixXd projected = pt::assembled_hessian(term, x, true);
-    const double largest = std::max(1.0, pt::eigenvalues(exact).cwiseAbs().maxCoeff());
-    EXPECT_GE(pt::eigenvalues(projected).minCoeff(), -1e-9 * largest);
-    if (pt::eigenvalues(exact).minCoeff() >= -1e-9 * largest)
+  const NeoHookeanMembrane full(t.rest, t.faces, {t.material});
+  for (double share : {0.0, TensionFieldMembrane::kDefaultCompressionShare}) {
+    const TensionFieldMembrane term(t.rest, t.faces, {t.material}, share);
+    int wrinkled_compared = 0;
+    for (unsigned seed = 1; seed <= 20; ++seed) {
+      SCOPED_TRACE("share " + std::to_string(share) + ", seed " + std::to_string(seed));
+      const double s1 = 0.6 + 0.1 * seed, s2 = 0.05 * seed;
+      const Vector x = t.state(std::max(s1, s2), std::min(s1, s2), seed);
+      const Eigen::MatrixXd exact = pt::assembled_hessian(term, x, false);
+      const Eigen::MatrixXd projected = pt::assembled_hessian(term, x, true);
+      const double largest = std::max(1.0, pt::eigenvalues(exact).cwiseAbs().maxCoeff());
+      EXPECT_GE(pt::eigenvalues(projected).minCoeff(), -1e-9 * largest);
+      if (pt::eigenvalues(exact).minCoeff() < -1e-9 * largest) continue;
       EXPECT_LT(pt::relative_error(projected, exact, 1e-12), 1e-9);
+      const double w = term.value(x);
+      wrinkled_compared += w > 0.0 && w < full.value(x);
+    }
+    if (share == 0.0) EXPECT_GT(wrinkled_compared, 3);
   }
 }
 
