@@ -509,6 +509,16 @@ typedef enum ps_method {
   PS_METHOD_FORCE32 = 0x7fffffff
 } ps_method;
 
+/** What ps_accuracy_def::direct_time_ratio multiplies. */
+typedef enum ps_time_base {
+  /** the progressive time to the converged finest level (the default) */
+  PS_TIME_BASE_PIPELINE = 0,
+  /** the coarse preview's time: a run capped at R stops as soon as it shows the preview at
+   *  least R times faster than the direct solve */
+  PS_TIME_BASE_PREVIEW = 1,
+  PS_TIME_BASE_FORCE32 = 0x7fffffff
+} ps_time_base;
+
 /** One level's result, as `progsim accuracy` writes it to accuracy.csv. */
 typedef struct ps_accuracy_row {
   ps_method method;
@@ -545,12 +555,15 @@ typedef struct ps_accuracy_def {
   const int32_t* direct_levels;
   int32_t num_direct_levels; /**< entries in direct_levels (0 to 64); default 0 */
   /** A direct solve stops within the Newton iteration that takes it past this many times the
-   *  progressive time to the converged finest level; its row then has finished = 0 (a load
-   *  step stopped inside is not counted in load_steps).
+   *  progressive time to the converged finest level (or the preview's, see direct_time_base);
+   *  its row then has finished = 0 (a load step stopped inside is not counted in load_steps).
    *  On large scenes the direct finest solve can take hours; a limit still measures a lower
    *  bound of the speed-up. 0 (the default): no limit; negative or NaN:
    *  PS_ERROR_INVALID_ARGUMENT. */
   double direct_time_ratio;
+  /** What direct_time_ratio multiplies; default PS_TIME_BASE_PIPELINE. Another value:
+   *  PS_ERROR_INVALID_ARGUMENT. */
+  ps_time_base direct_time_base;
   /** Nullable (default): called with done/100 and a phase such as "progressive level 1" or
    *  "direct level 0, load step 3 of 20": when a phase begins and after each load step of the
    *  preview and the direct solves (see ps_progress_fn). */
@@ -580,6 +593,10 @@ PS_API int32_t ps_accuracy_run_scene_file(const char* path, const ps_accuracy_de
 
 /** Destroys the results. Nullable (no-op). */
 PS_API void ps_accuracy_destroy(ps_accuracy* accuracy);
+
+/** The time limit the direct solves had, in seconds, into *out: direct_time_ratio times its
+ *  base's time in this run; 0 without a limit. Errors: PS_ERROR_NULL_ARGUMENT. */
+PS_API int32_t ps_accuracy_direct_time_limit(const ps_accuracy* accuracy, double* out);
 
 /** Number of rows into *out: progressive levels first (coarsest first), then direct ones. */
 PS_API int32_t ps_accuracy_num_rows(const ps_accuracy* accuracy, int32_t* out);

@@ -30,7 +30,16 @@ DirectSolves direct_solves(const ps_accuracy_def* def) {
   require_initialized(def->internal_cookie, kAccuracyCookie, "ps_accuracy_def");
   const std::vector<int32_t> levels = borrowed_array(def->direct_levels, def->num_direct_levels,
                                                      "direct_levels", "num_direct_levels", 64);
-  return DirectSolves{{levels.begin(), levels.end()}, def->direct_time_ratio};
+  if (def->direct_time_base != PS_TIME_BASE_PIPELINE &&
+      def->direct_time_base != PS_TIME_BASE_PREVIEW)
+    fail(Status::invalid_argument,
+         "ps_accuracy_def.direct_time_base " +
+             std::to_string(static_cast<int>(def->direct_time_base)) +
+             " is neither PS_TIME_BASE_PIPELINE nor PS_TIME_BASE_PREVIEW");
+  const auto base = def->direct_time_base == PS_TIME_BASE_PREVIEW
+                        ? DirectSolves::TimeBase::preview
+                        : DirectSolves::TimeBase::pipeline;
+  return DirectSolves{{levels.begin(), levels.end()}, def->direct_time_ratio, base};
 }
 
 }  // namespace
@@ -63,6 +72,14 @@ PS_API int32_t ps_accuracy_run_scene_file(const char* path, const ps_accuracy_de
 
 PS_API void ps_accuracy_destroy(ps_accuracy* accuracy) {
   delete accuracy;
+}
+
+PS_API int32_t ps_accuracy_direct_time_limit(const ps_accuracy* accuracy, double* out) {
+  return guarded(nullptr, "ps_accuracy_direct_time_limit", [&] {
+    require(accuracy, "accuracy");
+    require(out, "out");
+    *out = accuracy->report.direct_time_limit;
+  });
 }
 
 PS_API int32_t ps_accuracy_num_rows(const ps_accuracy* accuracy, int32_t* out) {

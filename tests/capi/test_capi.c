@@ -576,7 +576,26 @@ static void test_accuracy_def(void) {
   CHECK(accuracy && ps_accuracy_get_row(accuracy, 3, &row) == PS_OK);
   CHECK(row.method == PS_METHOD_DIRECT && row.level == 2);
   CHECK(row.finished == 0 && row.converged == 0 && row.load_steps < 10);
-  CHECK(progress[0] > 10); /* phases and the preview's 10 load steps at least */
+  CHECK(progress[0] > 10);  /* phases and the preview's 10 load steps at least */
+  ps_accuracy_row pipeline; /* the progressive finest row: the default base of the limit */
+  double limit = -1.0;
+  CHECK(accuracy && ps_accuracy_get_row(accuracy, 2, &pipeline) == PS_OK);
+  CHECK(accuracy && ps_accuracy_direct_time_limit(accuracy, &limit) == PS_OK);
+  CHECK(limit == 1e-9 * pipeline.seconds);
+  ps_accuracy_destroy(accuracy);
+  /* Relative to the preview: the direct finest solve gets twice the coarse preview's time. */
+  ps_accuracy_def of_preview = def;
+  of_preview.direct_time_ratio = 2.0;
+  of_preview.direct_time_base = PS_TIME_BASE_PREVIEW;
+  accuracy = NULL;
+  CHECK(ps_accuracy_run_scene_file(plate, &of_preview, &accuracy) == PS_OK);
+  ps_accuracy_row preview;
+  CHECK(accuracy && ps_accuracy_get_row(accuracy, 0, &preview) == PS_OK);
+  CHECK(accuracy && ps_accuracy_direct_time_limit(accuracy, &limit) == PS_OK);
+  CHECK(preview.method == PS_METHOD_PROGRESSIVE && preview.level == 0);
+  CHECK(limit == 2.0 * preview.seconds);
+  CHECK_ERROR(ps_accuracy_direct_time_limit(accuracy, NULL), PS_ERROR_NULL_ARGUMENT,
+              ps_last_error(), "out");
   ps_accuracy_destroy(accuracy);
   ps_accuracy_def bad = def;
   const int32_t missing[1] = {3};
@@ -588,6 +607,10 @@ static void test_accuracy_def(void) {
   bad.direct_time_ratio = -1.0;
   CHECK_ERROR(ps_accuracy_run_scene_file(plate, &bad, &accuracy), PS_ERROR_INVALID_ARGUMENT,
               ps_last_error(), "time ratio");
+  bad = def;
+  bad.direct_time_base = (ps_time_base)7;
+  CHECK_ERROR(ps_accuracy_run_scene_file(plate, &bad, &accuracy), PS_ERROR_INVALID_ARGUMENT,
+              ps_last_error(), "direct_time_base 7");
   bad = def;
   bad.direct_levels = NULL;
   CHECK_ERROR(ps_accuracy_run_scene_file(plate, &bad, &accuracy), PS_ERROR_NULL_ARGUMENT,

@@ -202,9 +202,22 @@ def test_accuracy_solves_directly_only_the_levels_asked_for_within_the_time_rati
         for row in report.rows[3:]:
             assert not row.finished and not row.converged and row.load_steps < 10
         assert all(row.finished for row in report.rows[:3])
+        # The limit is the ratio times the progressive time to the converged finest level.
+        assert report.direct_time_limit == 1e-9 * report.rows[2].seconds
     err = capsys.readouterr().err
     # One bar over the whole run (relabelled per phase and load step), left at 100 %.
     assert err.count("\n") == 1 and "100/100" in err, err
+
+
+def test_accuracy_time_ratio_of_the_preview_gives_the_direct_solve_that_many_previews():
+    with progsim.Accuracy(
+        PLATE, direct_levels=[2], direct_time_ratio=2.0, direct_time_of_preview=True
+    ) as report:
+        preview = report.rows[0]
+        assert (preview.method, preview.level) == ("progressive", 0)
+        assert report.direct_time_limit == 2.0 * preview.seconds
+    with progsim.Accuracy(PLATE, direct_levels=[0]) as unlimited:
+        assert unlimited.direct_time_limit == 0.0
 
 
 @pytest.mark.parametrize(

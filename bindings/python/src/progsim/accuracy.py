@@ -66,6 +66,7 @@ class Accuracy(NativeObject):
         *,
         direct_levels: Optional[Sequence[int]] = None,
         direct_time_ratio: float = 0.0,
+        direct_time_of_preview: bool = False,
         progress: ProgressArg = False,
     ) -> None:
         """Runs the scene (long: ``progress=True`` shows a bar per phase and load step).
@@ -76,6 +77,9 @@ class Accuracy(NativeObject):
             direct_time_ratio: stop each direct solve within the Newton iteration that takes
                 it past this many times the progressive time to the converged finest level
                 (its row then has ``finished=False``); 0 (default) for no limit.
+            direct_time_of_preview: the ratio multiplies the coarse preview's time instead, so
+                that a run capped at R stops as soon as it shows the preview at least R times
+                faster than the direct solve.
             progress: ``True`` for a tqdm bar, ``False`` for none, or a callable
                 ``(done, total, phase) -> bool`` returning True to cancel.
 
@@ -94,6 +98,9 @@ class Accuracy(NativeObject):
         definition.direct_levels = buffer
         definition.num_direct_levels = int(levels.size)
         definition.direct_time_ratio = real_value(direct_time_ratio, "direct_time_ratio")
+        definition.direct_time_base = (
+            lib.PS_TIME_BASE_PREVIEW if direct_time_of_preview else lib.PS_TIME_BASE_PIPELINE
+        )
         run.install(definition)
         out = ffi.new("ps_accuracy**")
         try:
@@ -105,6 +112,11 @@ class Accuracy(NativeObject):
         check_create(status)
         self._cdata = ffi.gc(out[0], lib.ps_accuracy_destroy)
         self.rows: List[AccuracyRow] = [self._row(k) for k in range(self._num_rows())]
+        limit = ffi.new("double*")
+        self._call(lib.ps_accuracy_direct_time_limit, limit)
+        #: The direct solves' time limit in seconds (the ratio times its base's time in this
+        #: run); 0 without a limit.
+        self.direct_time_limit: float = float(limit[0])
 
     def _num_rows(self) -> int:
         count = ffi.new("int32_t*")

@@ -62,6 +62,9 @@ pub struct AccuracyDef {
     /// large scenes the direct finest solve takes hours; a limit still measures a lower bound of
     /// the speed-up. 0: no limit.
     pub direct_time_ratio: f64,
+    /// The ratio multiplies the coarse preview's time instead: a run capped at R stops as soon
+    /// as it shows the preview at least R times faster than the direct solve.
+    pub direct_time_of_preview: bool,
 }
 
 impl AccuracyDef {
@@ -80,6 +83,11 @@ impl AccuracyDef {
             raw.direct_levels = self.direct_levels.as_ptr();
         }
         raw.direct_time_ratio = self.direct_time_ratio;
+        raw.direct_time_base = if self.direct_time_of_preview {
+            sys::PS_TIME_BASE_PREVIEW
+        } else {
+            sys::PS_TIME_BASE_PIPELINE
+        };
         Ok(raw)
     }
 }
@@ -89,6 +97,7 @@ impl AccuracyDef {
 pub struct Accuracy {
     raw: NonNull<sys::ps_accuracy>,
     rows: Vec<AccuracyRow>,
+    direct_time_limit: f64,
 }
 
 // SAFETY: the results are immutable C data with no thread affinity; not Sync keeps calls on
@@ -126,14 +135,24 @@ impl Accuracy {
         let raw = NonNull::new(out).ok_or_else(|| {
             Error::new(Status::Internal, "ps_accuracy_run_scene_file returned no handle")
         })?;
-        let mut accuracy = Accuracy { raw, rows: Vec::new() };
+        let mut accuracy = Accuracy { raw, rows: Vec::new(), direct_time_limit: 0.0 };
         accuracy.rows = accuracy.read_rows()?;
+        // SAFETY: live handle; the field outlives the call.
+        check_thread(unsafe {
+            sys::ps_accuracy_direct_time_limit(raw.as_ptr(), &mut accuracy.direct_time_limit)
+        })?;
         Ok(accuracy)
     }
 
     /// The rows: progressive levels first (coarsest first), then the direct solves.
     pub fn rows(&self) -> &[AccuracyRow] {
         &self.rows
+    }
+
+    /// The direct solves' time limit in seconds: [`AccuracyDef::direct_time_ratio`] times its
+    /// base's time in this run; 0 without a limit.
+    pub fn direct_time_limit(&self) -> f64 {
+        self.direct_time_limit
     }
 
     /// Writes `accuracy.csv`, `accuracy.md`, `error_vs_time.png`, `error_by_level.png` and

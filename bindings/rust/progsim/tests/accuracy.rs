@@ -44,13 +44,28 @@ fn scenes_without_levels_are_refused() {
 
 #[test]
 fn only_the_levels_asked_for_are_solved_directly_within_the_time_ratio() {
-    let def = AccuracyDef { direct_levels: vec![2], direct_time_ratio: 1e-9 };
+    let def = AccuracyDef { direct_levels: vec![2], direct_time_ratio: 1e-9, ..Default::default() };
     let accuracy = Accuracy::run_with(repo_path("scenes/psq_plate_buckling.json"), &def).unwrap();
     let rows = accuracy.rows();
     assert_eq!(rows.len(), 4);
     assert_eq!((rows[3].method, rows[3].level), (Method::Direct, 2));
     assert!(!rows[3].finished && !rows[3].converged && rows[3].load_steps < 10);
     assert!(rows[..3].iter().all(|row| row.finished));
+    // The limit is the ratio times the progressive time to the converged finest level.
+    assert_eq!(accuracy.direct_time_limit(), 1e-9 * rows[2].seconds);
+}
+
+#[test]
+fn a_time_ratio_of_the_preview_gives_the_direct_solve_that_many_previews() {
+    let def = AccuracyDef {
+        direct_levels: vec![2],
+        direct_time_ratio: 2.0,
+        direct_time_of_preview: true,
+    };
+    let accuracy = Accuracy::run_with(repo_path("scenes/psq_plate_buckling.json"), &def).unwrap();
+    let preview = &accuracy.rows()[0];
+    assert_eq!((preview.method, preview.level), (Method::Progressive, 0));
+    assert_eq!(accuracy.direct_time_limit(), 2.0 * preview.seconds);
 }
 
 #[test]
