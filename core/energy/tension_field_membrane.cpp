@@ -5,7 +5,6 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "energy/stretch_spectrum.hpp"
 
 namespace progsim {
 namespace {
@@ -81,12 +80,12 @@ double TensionFieldMembrane::element_value(int e, const LocalVector& xe) const {
   const Element& el = elements_[e];
   const StretchSpectrum s(deformation_gradient(el.beta, xe));
   const State state = state_of(s, el.mu, el.lambda);
-  const double full = NeoHookeanMembrane::element_value(e, xe);
-  if (state == State::taut) return full;
+  if (state == State::taut) return NeoHookeanMembrane::element_value(e, xe);
   const double relaxed =
       state == State::slack ? 0.0 : el.weight * uniaxial(s.sigma1, el.mu, el.lambda).energy;
-  if (share_ == 0.0) return relaxed;                // ε Ψ would be 0 · ∞ on a collapsed face
-  return (1.0 - share_) * relaxed + share_ * full;  // W_ε = (1 − ε) W + ε Ψ
+  if (share_ == 0.0) return relaxed;  // ε Ψ would be 0 · ∞ on a collapsed face
+  // W_ε = (1 − ε) W + ε Ψ
+  return (1.0 - share_) * relaxed + share_ * NeoHookeanMembrane::element_value(e, xe);
 }
 
 void TensionFieldMembrane::element_gradient(int e, const LocalVector& xe, LocalVector& g) const {
@@ -104,10 +103,9 @@ void TensionFieldMembrane::element_gradient(int e, const LocalVector& xe, LocalV
   for (int v = 0; v < 3; ++v) g.segment<3>(3 * v) += el.weight * (p * el.beta.row(v).transpose());
 }
 
-NeoHookeanMembrane::Matrix6 TensionFieldMembrane::wrinkled_stress_derivative(int e, const Mat32& f,
-                                                                             bool project) const {
+NeoHookeanMembrane::Matrix6 TensionFieldMembrane::wrinkled_stress_derivative(
+    int e, const Mat32& f, const StretchSpectrum& s, bool project) const {
   const Element& el = elements_[e];
-  const StretchSpectrum s(f);
   const Uniaxial g = uniaxial(s.sigma1, el.mu, el.lambda);
   const Vec3 u1 = f * s.v1 / s.sigma1;
   Vec3 u2 = f * s.v2;
@@ -146,7 +144,8 @@ void TensionFieldMembrane::blended_hessian(int e, const LocalVector& xe, bool pr
                                            LocalMatrix& h) const {
   const Element& el = elements_[e];
   const Mat32 f = deformation_gradient(el.beta, xe);
-  const State state = state_of(StretchSpectrum(f), el.mu, el.lambda);
+  const StretchSpectrum s(f);
+  const State state = state_of(s, el.mu, el.lambda);
   if (project)
     NeoHookeanMembrane::element_projected_hessian(e, xe, h);
   else
@@ -155,7 +154,7 @@ void TensionFieldMembrane::blended_hessian(int e, const LocalVector& xe, bool pr
   scale_full_part(h);
   if (state == State::slack) return;
   LocalMatrix relaxed;
-  pull_back(e, (1.0 - share_) * wrinkled_stress_derivative(e, f, project), relaxed);
+  pull_back(e, (1.0 - share_) * wrinkled_stress_derivative(e, f, s, project), relaxed);
   h += relaxed;
 }
 

@@ -3,6 +3,7 @@
 /// may wrinkle below the mesh's resolution (Pipkin 1986, "The relaxed energy density for
 /// isotropic elastic membranes"; Steigmann 1990; Skouras et al. 2014 §4).
 #include "energy/neo_hookean_membrane.hpp"
+#include "energy/stretch_spectrum.hpp"
 
 namespace progsim {
 
@@ -35,8 +36,6 @@ class TensionFieldMembrane : public NeoHookeanMembrane {
                        const std::vector<ShellMaterial>& face_materials,
                        double compression_share = kDefaultCompressionShare);
 
-  double compression_share() const { return share_; }
-
   const char* name() const override { return "tension_field_membrane"; }
 
  protected:
@@ -46,8 +45,10 @@ class TensionFieldMembrane : public NeoHookeanMembrane {
   void element_projected_hessian(int e, const LocalVector& xe, LocalMatrix& h) const override;
 
  private:
-  /// ∂²W/∂F² (6×6) of a wrinkled face, its eigenvalues clamped at 0 when `project`.
-  Matrix6 wrinkled_stress_derivative(int e, const Mat32& f, bool project) const;
+  /// ∂²W/∂F² (6×6) of a wrinkled face with principal stretches s, its eigenvalues clamped at 0
+  /// when `project`.
+  Matrix6 wrinkled_stress_derivative(int e, const Mat32& f, const StretchSpectrum& s,
+                                     bool project) const;
   /// ∇²E_e of W_ε (9×9), each part's Hessian projected to PSD when `project`.
   void blended_hessian(int e, const LocalVector& xe, bool project, LocalMatrix& h) const;
   /// d ← ε d: the full energy's share of a gradient or Hessian.

@@ -312,6 +312,20 @@ void solver(const Json& j, Scene& scene) {
   scene.solver.extrapolate = parameter(j, "solver", "line_search_extrapolation", "solver") != 0.0;
 }
 
+/// The option j[key] names among `known` (name, value), the first when j has no key;
+/// scene_error naming the known ones otherwise.
+template <typename Enum>
+Enum choice(const Json& j, const std::string& key, const std::string& where,
+            std::initializer_list<std::pair<const char*, Enum>> known) {
+  const std::string name = j.value(key, std::string(known.begin()->first));
+  std::string names;
+  for (const auto& [option, value] : known) {
+    if (name == option) return value;
+    names += (names.empty() ? "" : ", ") + std::string(option);
+  }
+  scene_error(where + "." + key, "unknown '" + name + "' (known: " + names + ")");
+}
+
 /// The "progressive" section: {"coarse_levels": k, "coarsening_ratio": r} or {"levels": [...]}
 /// plus the preview and proxy options and "proximal".
 ProgressiveSettings progressive(const Json& j) {
@@ -331,23 +345,15 @@ ProgressiveSettings progressive(const Json& j) {
     if (!j.at("proximal").is_boolean()) scene_error(where + ".proximal", "must be true or false");
     p.proximal = j.at("proximal").get<bool>();
   }
-  const std::string prolongation = j.value("prolongation", std::string("composed"));
-  if (prolongation == "direct")
-    p.prolongation = ProxyProlongation::direct;
-  else if (prolongation != "composed")
-    scene_error(where + ".prolongation",
-                "unknown '" + prolongation + "' (known: composed, direct)");
-  const std::string hessian = j.value("proxy_hessian", std::string("level"));
-  if (hessian == "galerkin")
-    p.hessian = ProxyHessian::galerkin;
-  else if (hessian != "level")
-    scene_error(where + ".proxy_hessian", "unknown '" + hessian + "' (known: level, galerkin)");
-  const std::string membrane = j.value("preview_membrane", std::string("neo_hookean"));
-  if (membrane == "tension_field")
-    p.preview_membrane = MembraneModel::tension_field;
-  else if (membrane != "neo_hookean")
-    scene_error(where + ".preview_membrane",
-                "unknown '" + membrane + "' (known: neo_hookean, tension_field)");
+  p.prolongation = choice<ProxyProlongation>(
+      j, "prolongation", where,
+      {{"composed", ProxyProlongation::composed}, {"direct", ProxyProlongation::direct}});
+  p.hessian =
+      choice<ProxyHessian>(j, "proxy_hessian", where,
+                           {{"level", ProxyHessian::level}, {"galerkin", ProxyHessian::galerkin}});
+  p.preview_membrane = choice<MembraneModel>(j, "preview_membrane", where,
+                                             {{"neo_hookean", MembraneModel::neo_hookean},
+                                              {"tension_field", MembraneModel::tension_field}});
   if (j.contains("levels")) {
     const Json& levels = j.at("levels");
     if (!levels.is_array()) scene_error(where + ".levels", "must be an array of vertex counts");

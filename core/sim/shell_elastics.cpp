@@ -15,6 +15,14 @@ Faces body_faces(const ShellModel& model, int b) {
                                      model.face_offset[b + 1] - model.face_offset[b]);
 }
 
+/// The membrane term of `model` under the given model.
+std::unique_ptr<EnergyTerm> membrane_term(const ShellModel& model, MembraneModel membrane) {
+  const Positions& rest = model.rest.vertices;
+  if (membrane == MembraneModel::tension_field)
+    return std::make_unique<TensionFieldMembrane>(rest, model.rest.faces, model.face_materials);
+  return std::make_unique<NeoHookeanMembrane>(rest, model.rest.faces, model.face_materials);
+}
+
 }  // namespace
 
 ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, bool with_gravity,
@@ -22,12 +30,7 @@ ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, b
   ShellElastics out;
   const EffectSet& fx = scene.effects;
   const Positions& rest = model.rest.vertices;
-  if (fx.has(Effect::membrane) && membrane == MembraneModel::tension_field)
-    out.terms.push_back(
-        std::make_unique<TensionFieldMembrane>(rest, model.rest.faces, model.face_materials));
-  else if (fx.has(Effect::membrane))
-    out.terms.push_back(
-        std::make_unique<NeoHookeanMembrane>(rest, model.rest.faces, model.face_materials));
+  if (fx.has(Effect::membrane)) out.terms.push_back(membrane_term(model, membrane));
   if (fx.has(Effect::bending))
     out.terms.push_back(std::make_unique<HingeBending>(
         rest, model.rest.faces, model.topology.hinges, model.face_materials));
