@@ -48,20 +48,8 @@ struct Strain {
 
 NeoHookeanMembrane::NeoHookeanMembrane(const Positions& rest, const Faces& faces,
                                        const std::vector<ShellMaterial>& face_materials)
-    : StencilTerm<3>(
-          [&] {
-            std::vector<Stencil> stencils(faces.rows());
-            for (Eigen::Index f = 0; f < faces.rows(); ++f)
-              for (int k = 0; k < 3; ++k) {
-                if (faces(f, k) < 0 || faces(f, k) >= rest.rows())
-                  fail(Status::invalid_mesh, "membrane: face " + std::to_string(f) +
-                                                 " has vertex index " +
-                                                 std::to_string(faces(f, k)) + " out of range");
-                stencils[f][k] = faces(f, k);
-              }
-            return stencils;
-          }(),
-          static_cast<int>(rest.rows())) {
+    : StencilTerm<3>(triangle_stencils(faces, rest.rows(), "membrane"),
+                     static_cast<int>(rest.rows())) {
   if (face_materials.size() != static_cast<std::size_t>(faces.rows()))
     fail(Status::invalid_argument, "membrane: " + std::to_string(face_materials.size()) +
                                        " face materials for " + std::to_string(faces.rows()) +

@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "common/parallel.hpp"
+#include "energy/triangle_frame.hpp"
 
 namespace progsim {
 namespace {
@@ -18,21 +19,6 @@ Mat3 cross_matrix(const Vec3& v) {
   Mat3 m;
   m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
   return m;
-}
-
-/// One stencil per face, after checking the indices (the base class indexes with them).
-std::vector<std::array<int, 3>> face_stencils(const Faces& faces, Eigen::Index num_vertices) {
-  std::vector<std::array<int, 3>> stencils(faces.rows());
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int v = faces(f, k);
-      if (v < 0 || v >= num_vertices)
-        fail(Status::invalid_mesh, "pressure: face " + std::to_string(f) + " has vertex index " +
-                                       std::to_string(v) + ", outside [0, " +
-                                       std::to_string(num_vertices) + ")");
-      stencils[f][k] = v;
-    }
-  return stencils;
 }
 
 /// For each face and edge k (corner k → k+1), the vertex opposite the same edge in the face
@@ -66,7 +52,8 @@ std::vector<std::array<int, 3>> opposite_across_edges(const Faces& faces) {
 }  // namespace
 
 Pressure::Pressure(const Positions& rest, const Faces& faces, double pressure)
-    : StencilTerm<3>(face_stencils(faces, rest.rows()), static_cast<int>(rest.rows())),
+    : StencilTerm<3>(triangle_stencils(faces, rest.rows(), "pressure"),
+                     static_cast<int>(rest.rows())),
       pressure_(pressure),
       origin_(Vec3::Zero()),
       across_(opposite_across_edges(faces)) {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "energy/stretch_spectrum.hpp"
+#include "energy/spectral_stretch.hpp"
 
 namespace progsim {
 namespace {
@@ -15,28 +15,9 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-/// Below this ratio (σ₁ − σ₂)/min(d₁, d₂) the divided difference of g' is replaced by the mean of
-/// g''(λ₁), g''(λ₂). Both errors are relative to the Hessian scale: the mean is off by
-/// ~(Δσ/d)², the divided difference by cancellation ~ε d/Δσ; ε^(1/3) ≈ 6e-6 balances them.
-constexpr double kIsotropicRatio = 1e-5;
-
 /// Growth of a held face's barrier stiffness per fit_limits call, and its cap.
 constexpr double kHeldScaleGrowth = 4.0;
 constexpr double kMaxHeldScale = 1e12;
-
-/// Vertex indices of the faces, validated, as stencils.
-std::vector<StencilTerm<3>::Stencil> face_stencils(const Positions& rest, const Faces& faces) {
-  std::vector<StencilTerm<3>::Stencil> stencils(faces.rows());
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int v = faces(f, k);
-      if (v < 0 || v >= rest.rows())
-        fail(Status::invalid_mesh, "strain_limit: face " + std::to_string(f) +
-                                       " has vertex index " + std::to_string(v) + " out of range");
-      stencils[f][k] = v;
-    }
-  return stencils;
-}
 
 /// h(σ) = b(s − σ, ŝ) and its first two σ-derivatives, for a distance d = s − σ ∈ (0, ŝ).
 struct Barrier {
@@ -54,18 +35,12 @@ struct Barrier {
   }
 };
 
-/// Derivatives of Φ(C) = Σ_i g(λ_i(C)), g(λ) = h(√λ), at one face's C.
-struct SpectralDerivatives {
-  double g1[2];    ///< g'(λ_i) = h'(σ_i)/(2σ_i)
-  double g2[2];    ///< g''(λ_i) = (h''(σ_i) − h'(σ_i)/σ_i)/(4σ_i²)
-  double divided;  ///< [g'(λ₁) − g'(λ₂)]/(λ₁ − λ₂), or its limit
-};
-
 }  // namespace
 
 StrainLimit::StrainLimit(const Positions& rest, const Faces& faces, std::vector<double> face_limits,
                          double band, double stiffness)
-    : StencilTerm<3>(face_stencils(rest, faces), static_cast<int>(rest.rows())),
+    : StencilTerm<3>(triangle_stencils(faces, rest.rows(), "strain_limit"),
+                     static_cast<int>(rest.rows())),
       band_(band),
       stiffness_(stiffness),
       num_vertices_(static_cast<int>(rest.rows())) {
@@ -132,10 +107,15 @@ void StrainLimit::set_stiffness(double stiffness) {
   stiffness_ = stiffness;
 }
 
-double StrainLimit::max_stretch(const Vector& x) const {
+void StrainLimit::check_size(const Vector& x, const char* what) const {
   if (x.size() != 3 * static_cast<Eigen::Index>(num_vertices_))
-    fail(Status::invalid_argument, "strain_limit: max_stretch of " + std::to_string(x.size()) +
-                                       " DOFs for " + std::to_string(num_vertices_) + " vertices");
+    fail(Status::invalid_argument, std::string("strain_limit: ") + what + " of " +
+                                       std::to_string(x.size()) + " DOFs for " +
+                                       std::to_string(num_vertices_) + " vertices");
+}
+
+double StrainLimit::max_stretch(const Vector& x) const {
+  check_size(x, "max_stretch");
   double stretch = 0.0;
 #pragma omp parallel for reduction(max        \
                                    : stretch) \
@@ -144,6 +124,16 @@ double StrainLimit::max_stretch(const Vector& x) const {
     stretch = std::max(
         stretch, StretchSpectrum(deformation_gradient(elements_[e].beta, gather(e, x))).sigma1);
   return stretch;
+}
+
+std::vector<int> StrainLimit::faces_beyond_limit(const Vector& x) const {
+  check_size(x, "faces_beyond_limit");
+  std::vector<int> beyond;
+  for (int e = 0; e < num_elements(); ++e)
+    if (StretchSpectrum(deformation_gradient(elements_[e].beta, gather(e, x))).sigma1 >=
+        elements_[e].own_limit)
+      beyond.push_back(e);
+  return beyond;
 }
 
 double StrainLimit::element_value(int e, const LocalVector& xe) const {
@@ -159,26 +149,18 @@ double StrainLimit::element_value(int e, const LocalVector& xe) const {
 
 namespace {
 
-/// g', g'' and the divided difference of g' at the singular values (both d_i > 0, d₁ < ŝ).
+/// g', g'' and the divided difference of g' at the singular values (d₁ = s − σ₁ ∈ (0, ŝ)).
 SpectralDerivatives spectral_derivatives(const StretchSpectrum& spectrum, double limit,
                                          double band) {
-  SpectralDerivatives out{};
   const double sigma[2] = {spectrum.sigma1, spectrum.sigma2};
+  StretchDerivatives h[2];
   for (int i = 0; i < 2; ++i) {
     const double d = limit - sigma[i];
-    if (d >= band) continue;  // inactive: g ≡ 0 near λ_i (g is C² at the activation)
-    const Barrier h(d, band);
-    const double s = sigma[i];  // > s − ŝ > 1
-    out.g1[i] = h.slope / (2.0 * s);
-    out.g2[i] = (h.curvature - h.slope / s) / (4.0 * s * s);
+    if (d >= band) continue;  // inactive: h ≡ 0 near σ_i (b is C² at the activation)
+    const Barrier b(d, band);
+    h[i] = {b.slope, b.curvature};
   }
-  const double gap = sigma[0] - sigma[1];  // ≥ 0
-  const double scale = std::min(limit - sigma[0], limit - sigma[1]);
-  if (gap > kIsotropicRatio * scale)
-    out.divided = (out.g1[0] - out.g1[1]) / (gap * (sigma[0] + sigma[1]));
-  else
-    out.divided = 0.5 * (out.g2[0] + out.g2[1]);  // → g''(λ) as λ₁ − λ₂ → 0
-  return out;
+  return SpectralDerivatives(spectrum, h, limit - sigma[0]);
 }
 
 }  // namespace
@@ -196,13 +178,9 @@ void StrainLimit::element_gradient(int e, const LocalVector& xe, LocalVector& g)
     g.setConstant(kNaN);  // infinite energy: no meaningful force (see class comment)
     return;
   }
-  const SpectralDerivatives sd = spectral_derivatives(spectrum, el.limit, band_);
-  // ∂Φ/∂C = S = Σ_i g'(λ_i) v_i v_iᵀ (Lewis 1996); dΦ = ⟨S, dFᵀF + FᵀdF⟩ = ⟨2FS, dF⟩, and
-  // ∂E/∂x_a = κĀ (∂Φ/∂F) β_a.
-  const Mat2 s = sd.g1[0] * spectrum.v1 * spectrum.v1.transpose() +
-                 sd.g1[1] * spectrum.v2 * spectrum.v2.transpose();
-  const Mat32 p = (2.0 * stiffness_ * el.weight()) * (f * s);
-  for (int a = 0; a < 3; ++a) g.segment<3>(3 * a) = p * el.beta.row(a).transpose();
+  // ∂E/∂x = κĀ ∂Φ/∂x (Lewis 1996).
+  g = spectral_gradient(f, spectrum, spectral_derivatives(spectrum, el.limit, band_), el.beta,
+                        stiffness_ * el.weight());
 }
 
 void StrainLimit::element_hessian(int e, const LocalVector& xe, LocalMatrix& h) const {
@@ -218,31 +196,8 @@ void StrainLimit::element_hessian(int e, const LocalVector& xe, LocalMatrix& h) 
     h.setConstant(kNaN);
     return;
   }
-  const SpectralDerivatives sd = spectral_derivatives(spectrum, el.limit, band_);
-  const double w = stiffness_ * el.weight();
-  const Vec2& v1 = spectrum.v1;
-  const Vec2& v2 = spectrum.v2;
-  // d²Φ[dC, dC] = Σ_i g''(λ_i)(v_iᵀ dC v_i)² + 2 δ (v₁ᵀ dC v₂)²  (Daleckii–Krein /
-  // Lewis & Sendov 2001), δ the divided difference; plus ⟨S, d²C⟩ with d²C = 2 dFᵀdF.
-  // With dF = Σ_a dx_a β_aᵀ: v_iᵀ dC v_j = Σ_a dx_a · [(β_a·v_j) F v_i + (β_a·v_i) F v_j], and
-  // ⟨S, dFᵀdF⟩ = Σ_ab (β_aᵀ S β_b) dx_a·dx_b.
-  const Vec3 fv1 = f * v1, fv2 = f * v2;
-  LocalVector q1, q2, q12;
-  for (int a = 0; a < 3; ++a) {
-    const Vec2 beta = el.beta.row(a).transpose();
-    const double b1 = beta.dot(v1), b2 = beta.dot(v2);
-    q1.segment<3>(3 * a) = (2.0 * b1) * fv1;
-    q2.segment<3>(3 * a) = (2.0 * b2) * fv2;
-    q12.segment<3>(3 * a) = b2 * fv1 + b1 * fv2;
-  }
-  const Mat2 s = sd.g1[0] * v1 * v1.transpose() + sd.g1[1] * v2 * v2.transpose();
-  const Mat3 bsb = el.beta * s * el.beta.transpose();  // β_aᵀ S β_b
-  h.noalias() = (w * sd.g2[0]) * q1 * q1.transpose();
-  h.noalias() += (w * sd.g2[1]) * q2 * q2.transpose();
-  h.noalias() += (2.0 * w * sd.divided) * q12 * q12.transpose();
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b)
-      h.block<3, 3>(3 * a, 3 * b).diagonal().array() += 2.0 * w * bsb(a, b);
+  h = spectral_hessian(f, spectrum, spectral_derivatives(spectrum, el.limit, band_), el.beta,
+                       stiffness_ * el.weight());
 }
 
 void StrainLimit::element_projected_hessian(int e, const LocalVector& xe, LocalMatrix& h) const {

@@ -53,6 +53,10 @@ class StrainLimit : public StencilTerm<3> {
   /// @throws Error(invalid_argument) if x.size() ≠ 3|V|.
   double max_stretch(const Vector& x) const;
 
+  /// The faces (indices into this term's faces) with σ₁ ≥ their own limit s_f at x (3|V|).
+  /// @throws Error(invalid_argument) if x.size() ≠ 3|V|.
+  std::vector<int> faces_beyond_limit(const Vector& x) const;
+
   /// κ (Pa·m).
   double stiffness() const { return stiffness_; }
   /// Sets κ. Not thread-safe with a concurrent evaluation.
@@ -99,6 +103,8 @@ class StrainLimit : public StencilTerm<3> {
   void element_projected_hessian(int e, const LocalVector& xe, LocalMatrix& h) const override;
 
  private:
+  /// Throws Error(invalid_argument), naming `what`, unless x.size() = 3|V|.
+  void check_size(const Vector& x, const char* what) const;
   /// Per-face constants. F = Σ_a x_a β_aᵀ (3×2), β_a the rows of `beta`.
   struct Element {
     Eigen::Matrix<double, 3, 2> beta;  ///< ∂F/∂x_a = I₃ ⊗ β_aᵀ; rows sum to zero

@@ -31,4 +31,19 @@ TriangleFrame rest_triangle_frame(const Positions& rest, const Faces& faces, Eig
   return frame;
 }
 
+std::vector<std::array<int, 3>> triangle_stencils(const Faces& faces, Eigen::Index num_vertices,
+                                                  const std::string& term) {
+  std::vector<std::array<int, 3>> stencils(faces.rows());
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int v = faces(f, k);
+      if (v < 0 || v >= num_vertices)
+        fail(Status::invalid_mesh, term + ": face " + std::to_string(f) + " has vertex index " +
+                                       std::to_string(v) + ", outside [0, " +
+                                       std::to_string(num_vertices) + ")");
+      stencils[f][k] = v;
+    }
+  return stencils;
+}
+
 }  // namespace progsim
