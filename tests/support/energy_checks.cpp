@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -114,6 +115,25 @@ Vector rigidly_moved(const Vector& x, const Mat3& r, const Vec3& t) {
   Vector y(x.size());
   for (Eigen::Index v = 0; v < x.size() / 3; ++v) y.segment<3>(3 * v) = r * x.segment<3>(3 * v) + t;
   return y;
+}
+
+Vec2 membrane_singular_values(const Positions& rest, const Faces& faces, const Vector& x, int f) {
+  Eigen::Matrix<double, 3, 2> rest_edges, edges;
+  for (int k = 0; k < 2; ++k) {
+    const int a = faces(f, 0), b = faces(f, k + 1);
+    rest_edges.col(k) = (rest.row(b) - rest.row(a)).transpose();
+    edges.col(k) = x.segment<3>(3 * b) - x.segment<3>(3 * a);
+  }
+  const Eigen::Matrix3d gradient =
+      edges * (rest_edges.transpose() * rest_edges).inverse() * rest_edges.transpose();
+  return Eigen::JacobiSVD<Eigen::Matrix3d>(gradient).singularValues().head<2>();
+}
+
+double max_membrane_stretch(const Positions& rest, const Faces& faces, const Vector& x) {
+  double stretch = 0.0;
+  for (int f = 0; f < faces.rows(); ++f)
+    stretch = std::max(stretch, membrane_singular_values(rest, faces, x, f)[0]);
+  return stretch;
 }
 
 Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& h) {

@@ -49,6 +49,14 @@ Vector perturbed(const Positions& p, double amplitude, unsigned seed);
 /// Rx + t applied to every vertex of x (3|V|).
 Vector rigidly_moved(const Vector& x, const Mat3& r, const Vec3& t);
 
+/// Singular values (σ₁ ≥ σ₂) of face f's membrane deformation gradient at x (3|V|): Eigen's SVD
+/// of F = D (D̄ᵀD̄)⁻¹ D̄ᵀ (D̄, D the rest and deformed edges of the face), written independently of
+/// the energy terms' closed-form spectrum.
+Vec2 membrane_singular_values(const Positions& rest, const Faces& faces, const Vector& x, int f);
+
+/// The largest σ₁ over all faces (membrane_singular_values).
+double max_membrane_stretch(const Positions& rest, const Faces& faces, const Vector& x);
+
 /// Eigenvalues of a symmetric matrix, ascending.
 Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& h);
 
