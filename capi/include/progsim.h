@@ -439,7 +439,8 @@ PS_API int32_t ps_sim_get_positions(const ps_sim* sim, int32_t level, double* ou
 PS_API int32_t ps_sim_write_mesh(const ps_sim* sim, int32_t level, const char* path);
 
 /** How a level's start was built from the coarser level by safe refinement (PSQ §4.4);
- *  all zeros for level 0 and for scenes without contact (the prolonged state is used). */
+ *  all zeros for level 0 and for scenes without contact (the prolonged state is used; its strain
+ *  correction is in ps_strain_correction_stats). */
 typedef struct ps_refinement_stats {
   int32_t batches;               /**< colour batches of vertex splits */
   int32_t splits;                /**< vertex splits over all batches */
@@ -454,6 +455,19 @@ typedef struct ps_refinement_stats {
   double reached;
   double min_gap; /**< smallest gap d − ξ of contact pairs outside their offsets, m */
 } ps_refinement_stats;
+
+/** How a refined start was brought under its strain limits (PSQ §4.4.5): the new vertices
+ *  move, the coarser level's held, until every face is under its limit (the coarser vertices
+ *  move too where that cannot be reached with them held). Zeros for level 0 and for scenes
+ *  without strain limits. */
+typedef struct ps_strain_correction_stats {
+  int32_t strained_faces;        /**< faces at or beyond their strain limit before it */
+  int32_t over_limit_faces;      /**< … after it (0: the start is strain-feasible) */
+  int32_t newton_iterations;     /**< Newton iterations of the correction */
+  int32_t moved_coarse_vertices; /**< 1 if the coarser level's vertices had to move too */
+  double stretch_before;         /**< largest principal stretch of a limited face before it */
+  double stretch_after;          /**< … after it */
+} ps_strain_correction_stats;
 
 /** Per-level statistics, accumulated over every step and settle at that level. */
 typedef struct ps_level_stats {
@@ -492,6 +506,8 @@ typedef struct ps_level_stats {
   /** Newton steps the line search lengthened beyond a whole step
    *  (ps_sim_def::solver_line_search_extrapolation = 1); 0 when it is off. */
   int32_t extrapolated_steps;
+  /** How the level's refined start was brought under its strain limits (PSQ §4.4.5). */
+  ps_strain_correction_stats strain_correction;
 } ps_level_stats;
 
 /** Statistics of `level` into *out. Levels not visited yet report zeros (NaN errors). */

@@ -29,6 +29,13 @@ ps_refinement_stats refinement_stats(const SafeRefinementStats& s) {
       s.reached,          s.min_gap};
 }
 
+/// The ABI's copy of a level's strain correction.
+ps_strain_correction_stats strain_correction_stats(const StrainCorrectionStats& s) {
+  return ps_strain_correction_stats{s.strained_faces,    s.over_limit_faces,
+                                    s.newton_iterations, s.moved_coarse_vertices ? 1 : 0,
+                                    s.stretch_before,    s.stretch_after};
+}
+
 }  // namespace
 }  // namespace progsim::capi
 
@@ -138,6 +145,7 @@ PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level
     stats.obstacle_refinement = refinement_stats(r.obstacle_refinement);
     stats.cg_iterations = r.cg_iterations;
     stats.extrapolated_steps = r.extrapolated_steps;
+    stats.strain_correction = strain_correction_stats(r.strain_correction);
     *out = stats;
   });
 }

@@ -83,6 +83,13 @@ nlohmann::json level_rows(const ProgressiveSimulation& psq, const std::vector<in
                           {"refine_seconds", r.refine_seconds},
                           {"equilibrium", r.equilibrium},
                           {"crossing_face_pairs", crossings[l]}};
+    const StrainCorrectionStats& c = r.strain_correction;
+    if (c.stretch_before > 0.0)  // the refined start met its strain limits (PSQ §4.4.5)
+      row["strain_correction"] = {{"strained_faces", c.strained_faces},
+                                  {"over_limit_faces", c.over_limit_faces},
+                                  {"stretch_before", c.stretch_before},
+                                  {"stretch_after", c.stretch_after},
+                                  {"newton_iterations", c.newton_iterations}};
     if (const auto error = psq.error_against_finest(l)) {
       row["error_rms"] = error->rms;
       row["error_max"] = error->max;

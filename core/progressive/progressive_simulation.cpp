@@ -7,6 +7,7 @@
 #include "hierarchy/level_prolongation.hpp"
 #include "sim/contact_setup.hpp"
 #include "sim/handle_targets.hpp"
+#include "sim/obstacle_script.hpp"
 
 namespace progsim {
 namespace {
@@ -148,19 +149,59 @@ bool ProgressiveSimulation::settle_to_equilibrium(int max_solves) {
   return false;
 }
 
+ShellModel ProgressiveSimulation::level_model(int level) const {
+  ShellModel model = build_shell_model(scene_);
+  return level < finest() ? level_shell_model(model, *hierarchy_, level) : model;
+}
+
 RefinementSurroundings ProgressiveSimulation::surroundings(int level) const {
   const ContactPotential& contact = *sim_->contact();
   const CollisionMesh& mesh = contact.mesh();
-  ShellModel model = build_shell_model(scene_);
-  if (level < finest()) model = level_shell_model(model, *hierarchy_, level);
   RefinementSurroundings around;
-  around.vertex_offset = shell_contact_offsets(model);
+  around.vertex_offset = shell_contact_offsets(level_model(level));
   around.obstacle_positions = contact.obstacle_positions();
   around.obstacle_faces = mesh.faces.bottomRows(mesh.faces.rows() - mesh.num_shell_faces).array() -
                           mesh.num_shell_vertices;
   if (contact.ground()) around.ground = *contact.ground();
   around.dhat = contact.dhat();
   return around;
+}
+
+StrainCorrectionStats ProgressiveSimulation::correct_refined_strain(
+    Vector& start, const Positions& obstacles) const {
+  const int fine = level_ + 1;
+  const ShellModel model = level_model(fine);
+  const int n = model.rest.num_vertices();
+  const std::vector<bool> handles =
+      HandleTargets(scene_, model.rest.vertices, level_groups(*hierarchy_, fine)).fixed_dofs(n);
+  const auto contact = [&] {
+    std::unique_ptr<ContactPotential> potential;
+    if (!sim_->contact()) return potential;
+    const Scene scene = level_scene(fine);
+    potential = make_contact_potential(scene, model, ObstacleScript(scene));
+    if (obstacles.rows() == potential->obstacle_positions().rows())
+      potential->set_obstacle_positions(obstacles);
+    return potential;
+  };
+  const double length = bounding_box_diagonal(model.rest.vertices);
+  // PSQ §4.4.5: the handles and the coarser level's vertices held, the new ones free.
+  std::vector<bool> held = handles;
+  std::vector<int> fine_index(hierarchy_->levels.back().rest.num_vertices(), -1);
+  const std::vector<int>& fine_ids = hierarchy_->levels[fine].input_vertex;
+  for (int i = 0; i < static_cast<int>(fine_ids.size()); ++i) fine_index[fine_ids[i]] = i;
+  for (int id : hierarchy_->levels[level_].input_vertex)
+    for (int d = 0; d < 3; ++d) held[3 * fine_index[id] + d] = true;
+  StrainCorrectionStats stats = correct_strain(model, held, contact(), length, start);
+  if (stats.over_limit_faces == 0) return stats;
+  // Held coarse vertices can make the limits unreachable (a cloth on a sphere: the new vertex
+  // between two coarse ones on the surface cannot come nearer the chord between them than the
+  // surface allows). Then every vertex but the handles moves.
+  const StrainCorrectionStats all = correct_strain(model, handles, contact(), length, start);
+  stats.over_limit_faces = all.over_limit_faces;
+  stats.newton_iterations += all.newton_iterations;
+  stats.stretch_after = all.stretch_after;
+  stats.moved_coarse_vertices = true;
+  return stats;
 }
 
 void ProgressiveSimulation::refine() {
@@ -176,6 +217,7 @@ void ProgressiveSimulation::refine() {
   // Without contact the level starts at the target; with contact, PSQ §4.4's safe expansion
   // gets as close to it as it can without crossing or entering a contact offset.
   SafeRefinementStats refinement, obstacle_refinement;
+  StrainCorrectionStats strain_correction;
   Vector start = as_dofs(target);
   std::unique_ptr<DirectSimulation> next;
   try {
@@ -187,6 +229,8 @@ void ProgressiveSimulation::refine() {
           as_dofs(safe_refinement(*hierarchy_, level_, coarse, target, around, {}, &refinement));
       obstacles = refined_obstacles(start, around, &obstacle_refinement);
     }
+    if (scene_.effects.has(Effect::strain_limit))
+      strain_correction = correct_refined_strain(start, obstacles);
     next = make_level(level_ + 1, {std::move(start), sim_->steps_taken(), true,
                                    std::move(obstacles), contact ? contact->stiffness() : 0.0});
   } catch (const Error& e) {
@@ -201,6 +245,7 @@ void ProgressiveSimulation::refine() {
   records_[level_].refine_seconds += timer.seconds();
   records_[level_].refinement = refinement;
   records_[level_].obstacle_refinement = obstacle_refinement;
+  records_[level_].strain_correction = strain_correction;
   records_[level_].obstacle_vertices = obstacle_vertex_count();
 }
 

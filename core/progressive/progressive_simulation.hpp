@@ -11,6 +11,7 @@
 #include "progressive/progressive_obstacles.hpp"
 #include "progressive/safe_refinement.hpp"
 #include "progressive/state_distance.hpp"
+#include "progressive/strain_correction.hpp"
 #include "scene/scene.hpp"
 #include "sim/direct_simulation.hpp"
 
@@ -28,6 +29,8 @@ struct LevelRecord {
   double refine_seconds = 0.0;  ///< wall time to build the level's start from the coarser one
   /// How the level's start was built from the coarser one (PSQ §4.4; zeros without contact).
   SafeRefinementStats refinement;
+  /// How the refined start was brought under its strain limits (PSQ §4.4.5; zeros without).
+  StrainCorrectionStats strain_correction;
   double energy = 0.0;          ///< E at the level's current or last state (J)
   double gradient_norm = 0.0;   ///< ‖∇E‖ over free DOFs there
   double simulated_time = 0.0;  ///< scene time of the last solve (s)
@@ -76,10 +79,12 @@ class ProgressiveSimulation {
   /// and the level's script rounds carry them on to their scripted places.
   /// With contact it starts where safe_refinement() (PSQ §4.4) takes it: split by split toward
   /// P^l_{l+1}(x_l), never crossing or entering a contact offset, even when the prolonged state
-  /// itself intersects. Faces the refined start leaves beyond their strain limit get raised
-  /// limits that the level's solves bring back down (StrainLimit::fit_limits; PSQ Algorithm 2
-  /// relaxes them with the coarse vertices fixed instead). Throws Error(out_of_range) at the
-  /// finest level, Error(intersecting) if no safe start is found. On Error nothing changed.
+  /// itself intersects. With strain limits, the new vertices then move (the coarser level's
+  /// held) until every face is under its limit (PSQ §4.4.5, correct_strain()); a face left
+  /// beyond (all its vertices coarse, from a coarser level left before its own limits held) gets
+  /// a raised limit that the level's solves bring back down (StrainLimit::fit_limits).
+  /// Throws Error(out_of_range) at the finest level, Error(intersecting) if no safe start is
+  /// found. On Error nothing changed.
   void refine();
 
   int level() const { return level_; }
@@ -117,6 +122,12 @@ class ProgressiveSimulation {
   /// P_{level+1}^level (PSQ eq. 7) and P^level (eq. 9), built once.
   const std::shared_ptr<const ShellProlongation>& next_operator(int level) const;
   const std::shared_ptr<const ShellProlongation>& direct_operator(int level) const;
+  /// The shell model of `level` (the scene's merged bodies at the finest level).
+  ShellModel level_model(int level) const;
+  /// PSQ §4.4.5: moves the new vertices of level_ + 1's refined start `start` (the vertices of
+  /// level_ and the handles held) until its faces are under their strain limits, against the
+  /// obstacles at `obstacles`.
+  StrainCorrectionStats correct_refined_strain(Vector& start, const Positions& obstacles) const;
   /// What the shell of `level` must stay clear of during refinement: its contact offsets, the
   /// obstacles where they are now, the ground.
   RefinementSurroundings surroundings(int level) const;

@@ -71,22 +71,28 @@ std::unique_ptr<FrictionPotential> make_friction_potential(const Scene& scene,
       contact, scene.contact.friction_velocity * scene.time_step);  // ε_x = ε_v h (IPC §5)
 }
 
-std::unique_ptr<StrainLimit> make_strain_limit(const ShellModel& model) {
-  Faces faces(model.rest.num_faces(), 3);
-  std::vector<double> limits;
-  double stiffness = 0.0, min_excess = std::numeric_limits<double>::infinity();
+LimitedFaces limited_faces(const ShellModel& model) {
+  LimitedFaces out;
+  out.faces.resize(model.rest.num_faces(), 3);
+  double min_excess = std::numeric_limits<double>::infinity();
   for (int f = 0; f < model.rest.num_faces(); ++f) {
     const ShellMaterial& m = model.face_materials[f];
     if (m.strain_limit == 0.0) continue;
-    faces.row(static_cast<Eigen::Index>(limits.size())) = model.rest.faces.row(f);
-    limits.push_back(m.strain_limit);
-    stiffness = std::max(stiffness, m.youngs_modulus * m.thickness);
+    out.faces.row(static_cast<Eigen::Index>(out.limits.size())) = model.rest.faces.row(f);
+    out.limits.push_back(m.strain_limit);
+    out.stiffness = std::max(out.stiffness, m.youngs_modulus * m.thickness);
     min_excess = std::min(min_excess, m.strain_limit - 1.0);
   }
-  if (limits.empty()) return nullptr;
-  faces.conservativeResize(static_cast<Eigen::Index>(limits.size()), 3);
-  return std::make_unique<StrainLimit>(model.rest.vertices, faces, std::move(limits),
-                                       0.5 * min_excess, stiffness);
+  out.faces.conservativeResize(static_cast<Eigen::Index>(out.limits.size()), 3);
+  if (!out.limits.empty()) out.band = 0.5 * min_excess;
+  return out;
+}
+
+std::unique_ptr<StrainLimit> make_strain_limit(const ShellModel& model) {
+  LimitedFaces limited = limited_faces(model);
+  if (limited.limits.empty()) return nullptr;
+  return std::make_unique<StrainLimit>(model.rest.vertices, limited.faces,
+                                       std::move(limited.limits), limited.band, limited.stiffness);
 }
 
 }  // namespace progsim

@@ -31,8 +31,17 @@ std::unique_ptr<ContactPotential> make_contact_potential(const Scene& scene,
 std::unique_ptr<FrictionPotential> make_friction_potential(const Scene& scene,
                                                            const ContactPotential& contact);
 
-/// The strain-limit barrier over the faces whose material has a strain limit, or nullptr if
-/// none has. Band ŝ = half the smallest (s_max − 1); κ = the largest E t (energy per area).
+/// The faces whose material has a strain limit, and the parameters of their barrier.
+struct LimitedFaces {
+  Faces faces;                 ///< (k × 3) the limited faces, in the model's vertex indices
+  std::vector<double> limits;  ///< s_max per limited face
+  double band = 0.0;           ///< ŝ = half the smallest s_max − 1
+  double stiffness = 0.0;      ///< κ = the largest E t over them (energy per area)
+};
+/// The model's limited faces (none: empty faces and limits).
+LimitedFaces limited_faces(const ShellModel& model);
+
+/// The strain-limit barrier over limited_faces(model), or nullptr if no face has a limit.
 std::unique_ptr<StrainLimit> make_strain_limit(const ShellModel& model);
 
 }  // namespace progsim

@@ -61,6 +61,7 @@ from .simulation import (  # noqa: E402
     LevelStats,
     RefinementStats,
     Simulation,
+    StrainCorrectionStats,
 )
 
 
@@ -81,6 +82,7 @@ __all__ = [
     "Simulation",
     "LevelStats",
     "RefinementStats",
+    "StrainCorrectionStats",
     "EFFECTS",
     "MODES",
     "PARAMETERS",

@@ -105,6 +105,25 @@ class RefinementStats:
 
 
 @dataclass(frozen=True)
+class StrainCorrectionStats:
+    """How a refined start was brought under its strain limits (PSQ §4.4.5;
+    ``ps_strain_correction_stats``); all zeros for level 0 and for scenes without strain
+    limits."""
+
+    strained_faces: int  #: faces at or beyond their strain limit before the correction
+    over_limit_faces: int  #: … after it (0: the start is strain-feasible)
+    newton_iterations: int  #: Newton iterations of the correction
+    moved_coarse_vertices: int  #: 1 if the coarser level's vertices had to move too
+    stretch_before: float  #: largest principal stretch of a limited face before it
+    stretch_after: float  #: … after it
+
+    @classmethod
+    def _from_native(cls, raw: Any) -> "StrainCorrectionStats":
+        fields = ffi.typeof("ps_strain_correction_stats").fields
+        return cls(**{name: getattr(raw, name) for name, _ in fields})
+
+
+@dataclass(frozen=True)
 class LevelStats:
     """Statistics of one level, accumulated over every step taken at it (``ps_level_stats``)."""
 
@@ -139,6 +158,7 @@ class LevelStats:
     cg_iterations: int
     #: Newton steps the line search lengthened beyond a whole step (``line_search_extrapolation``)
     extrapolated_steps: int
+    strain_correction: StrainCorrectionStats  #: how the refined start met its strain limits
 
 
 def _effect_bit(name: str) -> int:
@@ -671,6 +691,7 @@ class Simulation(NativeObject):
             obstacle_refinement=RefinementStats._from_native(out.obstacle_refinement),
             cg_iterations=int(out.cg_iterations),
             extrapolated_steps=int(out.extrapolated_steps),
+            strain_correction=StrainCorrectionStats._from_native(out.strain_correction),
         )
 
     def __repr__(self) -> str:

@@ -451,6 +451,41 @@ pub struct LevelStats {
     /// Newton steps the line search lengthened beyond a whole step
     /// ([`SimulationDef::line_search_extrapolation`]); 0 when it is off.
     pub extrapolated_steps: usize,
+    /// How the level's refined start was brought under its strain limits.
+    pub strain_correction: StrainCorrectionStats,
+}
+
+/// How a refined start was brought under its strain limits (PSQ §4.4.5): the new vertices
+/// move, the coarser level's held, until every face is under its limit (the coarser vertices
+/// move too where that cannot be reached with them held). All zeros for level 0 and for
+/// scenes without strain limits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StrainCorrectionStats {
+    /// Faces at or beyond their strain limit before the correction.
+    pub strained_faces: usize,
+    /// Faces beyond it after the correction (0: the start is strain-feasible).
+    pub over_limit_faces: usize,
+    /// Newton iterations of the correction.
+    pub newton_iterations: usize,
+    /// Whether the coarser level's vertices had to move too.
+    pub moved_coarse_vertices: bool,
+    /// Largest principal stretch of a limited face before the correction.
+    pub stretch_before: f64,
+    /// Largest principal stretch of a limited face after it.
+    pub stretch_after: f64,
+}
+
+impl From<sys::ps_strain_correction_stats> for StrainCorrectionStats {
+    fn from(raw: sys::ps_strain_correction_stats) -> StrainCorrectionStats {
+        StrainCorrectionStats {
+            strained_faces: crate::count_from(raw.strained_faces),
+            over_limit_faces: crate::count_from(raw.over_limit_faces),
+            newton_iterations: crate::count_from(raw.newton_iterations),
+            moved_coarse_vertices: raw.moved_coarse_vertices != 0,
+            stretch_before: raw.stretch_before,
+            stretch_after: raw.stretch_after,
+        }
+    }
 }
 
 /// How a level's start was built from the coarser level by safe refinement (PSQ §4.4); all
@@ -520,6 +555,7 @@ impl From<sys::ps_level_stats> for LevelStats {
             obstacle_refinement: RefinementStats::from(raw.obstacle_refinement),
             cg_iterations: crate::count_from(raw.cg_iterations),
             extrapolated_steps: crate::count_from(raw.extrapolated_steps),
+            strain_correction: StrainCorrectionStats::from(raw.strain_correction),
         }
     }
 }

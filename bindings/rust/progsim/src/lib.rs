@@ -61,6 +61,7 @@ use progsim_sys as sys;
 pub use accuracy::{Accuracy, AccuracyDef, AccuracyRow, Method};
 pub use def::{
     Effect, Effects, HandleMotion, HierarchyDef, LevelStats, Mode, RefinementStats, SimulationDef,
+    StrainCorrectionStats,
 };
 pub use error::{Error, Result, Status};
 pub use hierarchy::Hierarchy;

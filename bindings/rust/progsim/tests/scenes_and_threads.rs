@@ -31,6 +31,27 @@ fn progressive_obstacle_is_decimated_then_refined_with_the_cloth() {
 }
 
 #[test]
+fn refined_start_is_brought_under_its_strain_limit() {
+    // The bundled drape at 21 × 21 vertices: refinement stretches faces far beyond the cloth's
+    // strain limit of 1.06; the strain correction (PSQ §4.4.5) brings every one back under it.
+    let scenes = repo_path("scenes");
+    let json = std::fs::read_to_string(scenes.join("psq_cloth_on_sphere.json")).unwrap();
+    assert!(json.contains(r#""nx": 40, "ny": 40"#));
+    let json = json.replace(r#""nx": 40, "ny": 40"#, r#""nx": 20, "ny": 20"#);
+    let mut sim = Simulation::from_scene(&json, Some(&scenes)).unwrap();
+    sim.step_preview(4).unwrap();
+    assert!(sim.settle(300).unwrap());
+    sim.refine().unwrap();
+    let coarse = sim.level_stats(0).unwrap().strain_correction;
+    let fine = sim.level_stats(1).unwrap().strain_correction;
+    assert_eq!(coarse.strained_faces, 0);
+    assert_eq!(coarse.stretch_before, 0.0);
+    assert!(fine.strained_faces > 0 && fine.over_limit_faces == 0);
+    assert!(fine.stretch_before > 1.06 && fine.stretch_after < 1.06);
+    assert!(fine.newton_iterations > 0);
+}
+
+#[test]
 fn cg_refinement_counts_only_on_the_finest_level() {
     // solver.max_cg_iterations from the scene: the coarse proxy never refines, the wrung
     // finest level does.
