@@ -89,7 +89,8 @@ nlohmann::json level_rows(const ProgressiveSimulation& psq, const std::vector<in
                                   {"over_limit_faces", c.over_limit_faces},
                                   {"stretch_before", c.stretch_before},
                                   {"stretch_after", c.stretch_after},
-                                  {"newton_iterations", c.newton_iterations}};
+                                  {"newton_iterations", c.newton_iterations},
+                                  {"moved_coarse_vertices", c.moved_coarse_vertices}};
     if (const auto error = psq.error_against_finest(l)) {
       row["error_rms"] = error->rms;
       row["error_max"] = error->max;

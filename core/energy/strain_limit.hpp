@@ -72,12 +72,13 @@ class StrainLimit : public StencilTerm<3> {
     solve,   ///< a solve (or nothing yet): a face that did not come down is held
     motion,  ///< prescribed motion (handles moved): no face is judged held
   };
-  /// Limit homotopy for a start beyond some faces' limits (a refined level, PSQ §4.4 and
-  /// Algorithm 2's strain-limit relaxation): a face with σ₁ ≥ its limit gets the limit σ₁ + ŝ/2
-  /// (inside the barrier's band, so it pulls the face back); on later calls, after a solve, a
-  /// raised limit comes down halfway to the face's σ₁, never below the face's own s_f. Faces
-  /// under their s_f keep it. Call after each solve until it returns 0; returns the faces whose
-  /// limit is still raised. Not thread-safe with a concurrent evaluation.
+  /// Limit homotopy for a start beyond some faces' limits (what prescribed motion stretched, or
+  /// what a refined start's strain correction, correct_strain(), could not bring under): a face
+  /// with σ₁ ≥ its limit gets the limit σ₁ + ŝ/2 (inside the barrier's band, so it pulls the face
+  /// back); on later calls, after a solve, a raised limit comes down halfway to the face's σ₁,
+  /// never below the face's own s_f. Faces under their s_f keep it. Call after each solve until it
+  /// returns 0; returns the faces whose limit is still raised. Not thread-safe with a concurrent
+  /// evaluation.
   ///
   /// A load can hold a face near its raised limit: the barrier then balances the load at a gap
   /// d ≈ κĀŝ²/f from the limit, and halving the gap of a face that does not move halves the

@@ -1,6 +1,7 @@
 #include "progressive/progressive_simulation.hpp"
 
 #include <algorithm>
+#include <cassert>
 
 #include "common/error.hpp"
 #include "common/timer.hpp"
@@ -178,9 +179,12 @@ StrainCorrectionStats ProgressiveSimulation::correct_refined_strain(
     std::unique_ptr<ContactPotential> potential;
     if (!sim_->contact()) return potential;
     const Scene scene = level_scene(fine);
-    potential = make_contact_potential(scene, model, ObstacleScript(scene));
-    if (obstacles.rows() == potential->obstacle_positions().rows())
-      potential->set_obstacle_positions(obstacles);
+    const ObstacleScript script(scene);
+    potential = make_contact_potential(scene, model, script);
+    // Where the refinement left the obstacles (the level's own script time as the fallback).
+    potential->set_obstacle_positions(obstacles.rows() == potential->obstacle_positions().rows()
+                                          ? obstacles
+                                          : script.at(sim_->time()));
     return potential;
   };
   const double length = bounding_box_diagonal(model.rest.vertices);
@@ -189,8 +193,10 @@ StrainCorrectionStats ProgressiveSimulation::correct_refined_strain(
   std::vector<int> fine_index(hierarchy_->levels.back().rest.num_vertices(), -1);
   const std::vector<int>& fine_ids = hierarchy_->levels[fine].input_vertex;
   for (int i = 0; i < static_cast<int>(fine_ids.size()); ++i) fine_index[fine_ids[i]] = i;
-  for (int id : hierarchy_->levels[level_].input_vertex)
+  for (int id : hierarchy_->levels[level_].input_vertex) {
+    assert(fine_index[id] >= 0 && "a coarser level's vertex is on every finer level");
     for (int d = 0; d < 3; ++d) held[3 * fine_index[id] + d] = true;
+  }
   StrainCorrectionStats stats = correct_strain(model, held, contact(), length, start);
   if (stats.over_limit_faces == 0) return stats;
   // Held coarse vertices can make the limits unreachable (a cloth on a sphere: the new vertex
@@ -200,7 +206,7 @@ StrainCorrectionStats ProgressiveSimulation::correct_refined_strain(
   stats.over_limit_faces = all.over_limit_faces;
   stats.newton_iterations += all.newton_iterations;
   stats.stretch_after = all.stretch_after;
-  stats.moved_coarse_vertices = true;
+  stats.moved_coarse_vertices = all.newton_iterations > 0;
   return stats;
 }
 

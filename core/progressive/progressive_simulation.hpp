@@ -80,9 +80,10 @@ class ProgressiveSimulation {
   /// With contact it starts where safe_refinement() (PSQ §4.4) takes it: split by split toward
   /// P^l_{l+1}(x_l), never crossing or entering a contact offset, even when the prolonged state
   /// itself intersects. With strain limits, the new vertices then move (the coarser level's
-  /// held) until every face is under its limit (PSQ §4.4.5, correct_strain()); a face left
-  /// beyond (all its vertices coarse, from a coarser level left before its own limits held) gets
-  /// a raised limit that the level's solves bring back down (StrainLimit::fit_limits).
+  /// held; all but the handles where that cannot reach the limits) until every face is under
+  /// its limit (PSQ §4.4.5, correct_strain()). A face still left beyond (its vertices all
+  /// handles, or contact in the way) gets a raised limit that the level's solves bring back
+  /// down (StrainLimit::fit_limits).
   /// Throws Error(out_of_range) at the finest level, Error(intersecting) if no safe start is
   /// found. On Error nothing changed.
   void refine();

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "common/error.hpp"
 #include "energy/inertia.hpp"
 #include "energy/strain_limit.hpp"
 #include "energy/stretch_excess.hpp"
@@ -45,6 +46,11 @@ int held_count(const std::vector<int>& beyond, const Faces& faces, const std::ve
 StrainCorrectionStats correct_strain(const ShellModel& model, const std::vector<bool>& fixed,
                                      std::unique_ptr<ContactPotential> contact, double length,
                                      Vector& x, const StrainCorrectionSettings& settings) {
+  const int n = model.rest.num_vertices();
+  if (x.size() != 3 * n || fixed.size() != static_cast<std::size_t>(3 * n))
+    fail(Status::invalid_argument, "correct_strain: " + std::to_string(x.size()) + " DOFs and " +
+                                       std::to_string(fixed.size()) + " fixed flags for " +
+                                       std::to_string(n) + " vertices");
   StrainCorrectionStats stats;
   const std::unique_ptr<StrainLimit> limit = make_strain_limit(model);
   if (!limit) return stats;
@@ -55,10 +61,9 @@ StrainCorrectionStats correct_strain(const ShellModel& model, const std::vector<
   const int held = held_count(beyond, limited.faces, fixed);
   if (stats.strained_faces == held) return stats;  // nothing the free vertices can mend
 
-  const int n = model.rest.num_vertices();
   Problem problem(3 * n);
   const Eigen::VectorXd areas = lumped_areas(model.rest);
-  const double mean_face_area = 3.0 * areas.sum() / model.rest.num_faces();
+  const double mean_face_area = areas.sum() / model.rest.num_faces();
   // ½ Σ A_i ‖x_i − x_i⁰‖² / Ā: a move of one edge costs about what a unit stretch excess does.
   auto proximity = std::make_unique<Inertia>(areas, std::sqrt(mean_face_area));
   proximity->set_target(x);
@@ -87,12 +92,14 @@ StrainCorrectionStats correct_strain(const ShellModel& model, const std::vector<
   newton.tolerance = settings.tolerance;
   for (double rho = settings.first_stiffness;; rho *= settings.growth) {
     excess.set_stiffness(rho);  // PSQ §4.4.5: pull the new vertices in until the limits hold
-    stats.newton_iterations += solver.minimize(problem, x, newton, 1.0, length).iterations;
+    const NewtonReport report = solver.minimize(problem, x, newton, 1.0, length);
+    stats.newton_iterations += report.iterations;
     const int before = stats.over_limit_faces;
     stats.over_limit_faces = static_cast<int>(limit->faces_beyond_limit(x).size());
-    // Done, or stuck: a stiffer pull that brought no face under its limit is held by what it
-    // cannot move (held vertices, contact), not by the proximity term.
-    const bool stuck = rho > settings.first_stiffness && stats.over_limit_faces >= before;
+    // Done, or stuck: a stiffer pull whose solve converged without bringing a face under its
+    // limit is held by what it cannot move (held vertices, contact), not by the proximity term.
+    const bool stuck = rho > settings.first_stiffness && report.stop == NewtonStop::converged &&
+                       stats.over_limit_faces >= before;
     if (stats.over_limit_faces <= held || stuck || rho * settings.growth > settings.max_stiffness)
       break;
   }

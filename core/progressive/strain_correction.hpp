@@ -49,6 +49,7 @@ struct StrainCorrectionSettings {
 /// offsets are accepted (ContactPotential::fit_offsets) and every step is CCD-bounded, so nothing
 /// crosses. Without a strain-limited face, or with none beyond its limit, x is unchanged.
 /// @param length the level's length scale (Newton tolerance)
+/// @throws Error(invalid_argument) if x or fixed is not 3|V| long.
 StrainCorrectionStats correct_strain(const ShellModel& model, const std::vector<bool>& fixed,
                                      std::unique_ptr<ContactPotential> contact, double length,
                                      Vector& x, const StrainCorrectionSettings& settings = {});

@@ -1,7 +1,8 @@
 // Stretch-excess penalty (the strain-limit correction's objective, PSQ §4.4.5): the energy
 // against the closed form with singular values from Eigen's SVD, derivatives against finite
 // differences (one or both singular values beyond the target, an exactly isotropic stretch),
-// exact zeros below the target, PSD Hessians, and argument checks.
+// exact zeros below the target, PSD Hessians (so the exact Hessian serves as its projection),
+// and argument checks.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,7 +116,7 @@ TEST(StretchExcess, ExactlyZeroBelowTheTargets) {
   EXPECT_EQ(pt::assembled_hessian(term, x, false).cwiseAbs().maxCoeff(), 0.0);
 }
 
-TEST(StretchExcess, HessianIsPsdAndItsOwnProjection) {
+TEST(StretchExcess, HessianIsPsd) {
   const TriangleMesh mesh = grid_mesh();
   const StretchExcess term(mesh.vertices, mesh.faces,
                            std::vector<double>(mesh.num_faces(), kTarget), kStiffness);
@@ -126,7 +127,6 @@ TEST(StretchExcess, HessianIsPsdAndItsOwnProjection) {
     const double scale = h.cwiseAbs().maxCoeff();
     ASSERT_GT(scale, 0.0);
     EXPECT_GT(pt::eigenvalues(h).minCoeff(), -1e-10 * scale) << "seed " << seed;
-    EXPECT_EQ((pt::assembled_hessian(term, x, true) - h).cwiseAbs().maxCoeff(), 0.0);
   }
 }
 

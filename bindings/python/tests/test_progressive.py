@@ -86,7 +86,7 @@ def test_refined_start_is_brought_under_its_strain_limit():
         assert sim.settle(300)
         sim.refine()
         coarse, fine = sim.level_stats(0), sim.level_stats(1)
-    assert coarse.strain_correction == progsim.StrainCorrectionStats(0, 0, 0, 0, 0.0, 0.0)
+    assert coarse.strain_correction == progsim.StrainCorrectionStats(0, 0, 0, False, 0.0, 0.0)
     correction = fine.strain_correction
     assert correction.strained_faces > 0 and correction.over_limit_faces == 0
     assert correction.stretch_before > 1.06 > correction.stretch_after

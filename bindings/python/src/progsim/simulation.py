@@ -113,14 +113,16 @@ class StrainCorrectionStats:
     strained_faces: int  #: faces at or beyond their strain limit before the correction
     over_limit_faces: int  #: … after it (0: the start is strain-feasible)
     newton_iterations: int  #: Newton iterations of the correction
-    moved_coarse_vertices: int  #: 1 if the coarser level's vertices had to move too
+    moved_coarse_vertices: bool  #: the coarser level's vertices had to move too
     stretch_before: float  #: largest principal stretch of a limited face before it
     stretch_after: float  #: … after it
 
     @classmethod
     def _from_native(cls, raw: Any) -> "StrainCorrectionStats":
         fields = ffi.typeof("ps_strain_correction_stats").fields
-        return cls(**{name: getattr(raw, name) for name, _ in fields})
+        values = {name: getattr(raw, name) for name, _ in fields}
+        values["moved_coarse_vertices"] = bool(values["moved_coarse_vertices"])
+        return cls(**values)
 
 
 @dataclass(frozen=True)
