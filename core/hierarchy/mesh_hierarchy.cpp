@@ -17,6 +17,13 @@ std::vector<FaceCorners> level_input_faces(const HierarchyLevel& level) {
   return faces;
 }
 
+std::vector<int> level_vertex_index(const MeshHierarchy& hierarchy, int level) {
+  std::vector<int> index(hierarchy.levels.back().rest.num_vertices(), -1);
+  const std::vector<int>& ids = hierarchy.levels[level].input_vertex;
+  for (int i = 0; i < static_cast<int>(ids.size()); ++i) index[ids[i]] = i;
+  return index;
+}
+
 std::vector<int> level_groups(const MeshHierarchy& hierarchy, int level) {
   std::vector<int> group = hierarchy.input_group;
   for (int c = 0; c < hierarchy.first_collapse[level]; ++c) {
@@ -47,8 +54,7 @@ std::vector<int> geometric_level_counts(int finest_vertices, double ratio, int c
 MeshHierarchy build_hierarchy(const TriangleMesh& mesh, const HierarchyOptions& options,
                               HierarchyProgress progress, void* user) {
   validate_mesh(mesh, "hierarchy mesh");
-  MeshHierarchy hierarchy =
-      decimate(mesh, options, progress, user);
+  MeshHierarchy hierarchy = decimate(mesh, options, progress, user);
   for (int l = 0; l < hierarchy.finest(); ++l)
     hierarchy.expansion_batches.push_back(
         expansion_batches(level_input_faces(hierarchy.levels[l]), hierarchy.collapses,

@@ -63,6 +63,10 @@ struct MeshHierarchy {
 /// that lead to the level.
 std::vector<int> level_groups(const MeshHierarchy& hierarchy, int level);
 
+/// Per input vertex, its index on level `level` (−1 where the level does not have it): the
+/// inverse of levels[level].input_vertex.
+std::vector<int> level_vertex_index(const MeshHierarchy& hierarchy, int level);
+
 /// The faces of a level as input-mesh vertex id triples (the ids collapse records use).
 std::vector<FaceCorners> level_input_faces(const HierarchyLevel& level);
 

@@ -155,11 +155,11 @@ ShellModel ProgressiveSimulation::level_model(int level) const {
   return level < finest() ? level_shell_model(model, *hierarchy_, level) : model;
 }
 
-RefinementSurroundings ProgressiveSimulation::surroundings(int level) const {
+RefinementSurroundings ProgressiveSimulation::surroundings(const ShellModel& model) const {
   const ContactPotential& contact = *sim_->contact();
   const CollisionMesh& mesh = contact.mesh();
   RefinementSurroundings around;
-  around.vertex_offset = shell_contact_offsets(level_model(level));
+  around.vertex_offset = shell_contact_offsets(model);
   around.obstacle_positions = contact.obstacle_positions();
   around.obstacle_faces = mesh.faces.bottomRows(mesh.faces.rows() - mesh.num_shell_faces).array() -
                           mesh.num_shell_vertices;
@@ -169,9 +169,8 @@ RefinementSurroundings ProgressiveSimulation::surroundings(int level) const {
 }
 
 StrainCorrectionStats ProgressiveSimulation::correct_refined_strain(
-    Vector& start, const Positions& obstacles) const {
+    const ShellModel& model, Vector& start, const Positions& obstacles) const {
   const int fine = level_ + 1;
-  const ShellModel model = level_model(fine);
   const int n = model.rest.num_vertices();
   const std::vector<bool> handles =
       HandleTargets(scene_, model.rest.vertices, level_groups(*hierarchy_, fine)).fixed_dofs(n);
@@ -190,9 +189,7 @@ StrainCorrectionStats ProgressiveSimulation::correct_refined_strain(
   const double length = bounding_box_diagonal(model.rest.vertices);
   // PSQ §4.4.5: the handles and the coarser level's vertices held, the new ones free.
   std::vector<bool> held = handles;
-  std::vector<int> fine_index(hierarchy_->levels.back().rest.num_vertices(), -1);
-  const std::vector<int>& fine_ids = hierarchy_->levels[fine].input_vertex;
-  for (int i = 0; i < static_cast<int>(fine_ids.size()); ++i) fine_index[fine_ids[i]] = i;
+  const std::vector<int> fine_index = level_vertex_index(*hierarchy_, fine);
   for (int id : hierarchy_->levels[level_].input_vertex) {
     assert(fine_index[id] >= 0 && "a coarser level's vertex is on every finer level");
     for (int d = 0; d < 3; ++d) held[3 * fine_index[id] + d] = true;
@@ -229,14 +226,15 @@ void ProgressiveSimulation::refine() {
   try {
     const ContactPotential* contact = sim_->contact();
     Positions obstacles = sim_->obstacle_positions();
+    const ShellModel model = level_model(level_ + 1);
     if (contact) {
-      const RefinementSurroundings around = surroundings(level_ + 1);
+      const RefinementSurroundings around = surroundings(model);
       start =
           as_dofs(safe_refinement(*hierarchy_, level_, coarse, target, around, {}, &refinement));
       obstacles = refined_obstacles(start, around, &obstacle_refinement);
     }
     if (scene_.effects.has(Effect::strain_limit))
-      strain_correction = correct_refined_strain(start, obstacles);
+      strain_correction = correct_refined_strain(model, start, obstacles);
     next = make_level(level_ + 1, {std::move(start), sim_->steps_taken(), true,
                                    std::move(obstacles), contact ? contact->stiffness() : 0.0});
   } catch (const Error& e) {

@@ -125,13 +125,14 @@ class ProgressiveSimulation {
   const std::shared_ptr<const ShellProlongation>& direct_operator(int level) const;
   /// The shell model of `level` (the scene's merged bodies at the finest level).
   ShellModel level_model(int level) const;
-  /// PSQ §4.4.5: moves the new vertices of level_ + 1's refined start `start` (the vertices of
-  /// level_ and the handles held) until its faces are under their strain limits, against the
-  /// obstacles at `obstacles`.
-  StrainCorrectionStats correct_refined_strain(Vector& start, const Positions& obstacles) const;
-  /// What the shell of `level` must stay clear of during refinement: its contact offsets, the
-  /// obstacles where they are now, the ground.
-  RefinementSurroundings surroundings(int level) const;
+  /// PSQ §4.4.5: moves the new vertices of level_ + 1's refined start `start` (`model` is that
+  /// level's shell; the vertices of level_ and the handles held) until its faces are under their
+  /// strain limits, against the obstacles at `obstacles`.
+  StrainCorrectionStats correct_refined_strain(const ShellModel& model, Vector& start,
+                                               const Positions& obstacles) const;
+  /// What the shell `model` (the level refined into) must stay clear of during refinement: its
+  /// contact offsets, the obstacles where they are now, the ground.
+  RefinementSurroundings surroundings(const ShellModel& model) const;
   /// Obstacle vertices the current level's contact meets (without copying their positions).
   int obstacle_vertex_count() const;
   /// Adds a solve's outcome to the current level's record.

@@ -96,9 +96,7 @@ class Expansion {
         settings_(settings),
         length_(bounding_box_diagonal(h.levels[level + 1].rest.vertices)) {
     const HierarchyLevel& fine = h.levels[level + 1];
-    fine_index_.assign(h.levels.back().rest.num_vertices(), -1);
-    for (int i = 0; i < static_cast<int>(fine.input_vertex.size()); ++i)
-      fine_index_[fine.input_vertex[i]] = i;
+    fine_index_ = level_vertex_index(h, level + 1);
     x_ = Positions::Zero(fine.rest.num_vertices(), 3);
     present_.assign(fine.rest.num_vertices(), 0);
     const std::vector<int>& ids = h.levels[level].input_vertex;

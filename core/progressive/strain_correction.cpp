@@ -1,6 +1,5 @@
 #include "progressive/strain_correction.hpp"
 
-#include <Eigen/Geometry>
 #include <cmath>
 
 #include "common/error.hpp"
@@ -16,14 +15,10 @@ namespace {
 
 /// A_i = Σ_{f ∋ i} Ā_f / 3 (m², |V|).
 Eigen::VectorXd lumped_areas(const TriangleMesh& rest) {
+  const Eigen::VectorXd face_area = face_areas(rest.vertices, rest.faces);
   Eigen::VectorXd areas = Eigen::VectorXd::Zero(rest.num_vertices());
-  for (int f = 0; f < rest.num_faces(); ++f) {
-    const Vec3 a = rest.vertices.row(rest.faces(f, 0));
-    const Vec3 b = rest.vertices.row(rest.faces(f, 1));
-    const Vec3 c = rest.vertices.row(rest.faces(f, 2));
-    const double third = (b - a).cross(c - a).norm() / 6.0;
-    for (int k = 0; k < 3; ++k) areas[rest.faces(f, k)] += third;
-  }
+  for (int f = 0; f < rest.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) areas[rest.faces(f, k)] += face_area[f] / 3.0;
   return areas;
 }
 
@@ -52,12 +47,13 @@ StrainCorrectionStats correct_strain(const ShellModel& model, const std::vector<
                                        std::to_string(fixed.size()) + " fixed flags for " +
                                        std::to_string(n) + " vertices");
   StrainCorrectionStats stats;
-  const std::unique_ptr<StrainLimit> limit = make_strain_limit(model);
-  if (!limit) return stats;
-  const std::vector<int> beyond = limit->faces_beyond_limit(x);
-  stats.strained_faces = stats.over_limit_faces = static_cast<int>(beyond.size());
-  stats.stretch_before = stats.stretch_after = limit->max_stretch(x);
   const LimitedFaces limited = limited_faces(model);
+  if (limited.limits.empty()) return stats;
+  const StrainLimit limit(model.rest.vertices, limited.faces, limited.limits, limited.band,
+                          limited.stiffness);  // measures σ₁ against s_f
+  const std::vector<int> beyond = limit.faces_beyond_limit(x);
+  stats.strained_faces = stats.over_limit_faces = static_cast<int>(beyond.size());
+  stats.stretch_before = stats.stretch_after = limit.max_stretch(x);
   const int held = held_count(beyond, limited.faces, fixed);
   if (stats.strained_faces == held) return stats;  // nothing the free vertices can mend
 
@@ -95,7 +91,7 @@ StrainCorrectionStats correct_strain(const ShellModel& model, const std::vector<
     const NewtonReport report = solver.minimize(problem, x, newton, 1.0, length);
     stats.newton_iterations += report.iterations;
     const int before = stats.over_limit_faces;
-    stats.over_limit_faces = static_cast<int>(limit->faces_beyond_limit(x).size());
+    stats.over_limit_faces = static_cast<int>(limit.faces_beyond_limit(x).size());
     // Done, or stuck: a stiffer pull whose solve converged without bringing a face under its
     // limit is held by what it cannot move (held vertices, contact), not by the proximity term.
     const bool stuck = rho > settings.first_stiffness && report.stop == NewtonStop::converged &&
@@ -103,7 +99,7 @@ StrainCorrectionStats correct_strain(const ShellModel& model, const std::vector<
     if (stats.over_limit_faces <= held || stuck || rho * settings.growth > settings.max_stiffness)
       break;
   }
-  stats.stretch_after = limit->max_stretch(x);
+  stats.stretch_after = limit.max_stretch(x);
   return stats;
 }
 
