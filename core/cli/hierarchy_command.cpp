@@ -7,6 +7,7 @@
 #include "common/timer.hpp"
 #include "hierarchy/hierarchy_io.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
+#include "mesh/intersection_check.hpp"
 #include "mesh/mesh_io.hpp"
 
 namespace progsim::cli {
@@ -23,6 +24,10 @@ CLI::App* add_hierarchy_command(CLI::App& app, HierarchyCommand& options) {
   auto* count = cmd->add_option("--count", options.count, "number of coarse levels");
   ratio->needs(count)->excludes(levels);
   count->needs(ratio)->excludes(levels);
+  cmd->add_option("--offset", options.offset,
+                  "contact offset of every vertex in m (half the shell thickness): no level "
+                  "brings a vertex and a face, or two edges, within twice this")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", options.quiet, "no progress bar");
   return cmd;
 }
@@ -36,6 +41,7 @@ int run_hierarchy_command(const HierarchyCommand& options) {
                : options.levels;
   if (build.coarse_vertex_counts.empty())
     fail(Status::invalid_argument, "hierarchy: give --levels or --ratio with --count");
+  if (options.offset > 0.0) build.contact_offsets.assign(mesh.num_vertices(), options.offset);
   ProgressBar bar("hierarchy", 100);
   const Timer timer;
   const MeshHierarchy hierarchy =
@@ -43,13 +49,15 @@ int run_hierarchy_command(const HierarchyCommand& options) {
   const double seconds = timer.seconds();
   if (!options.quiet) bar.finish();
   save_hierarchy(hierarchy, options.out_path);
-  std::printf("level  vertices  faces  expansion batches\n");
-  for (int l = 0; l < hierarchy.num_levels(); ++l)
-    std::printf("%5d  %8d  %5d  %s\n", l, hierarchy.levels[l].rest.num_vertices(),
-                hierarchy.levels[l].rest.num_faces(),
+  std::printf("level  vertices  faces  expansion batches  crossing face pairs\n");
+  for (int l = 0; l < hierarchy.num_levels(); ++l) {
+    const TriangleMesh& level = hierarchy.levels[l].rest;
+    std::printf("%5d  %8d  %5d  %17s  %19zu\n", l, level.num_vertices(), level.num_faces(),
                 l < hierarchy.finest()
                     ? std::to_string(hierarchy.expansion_batches[l].size()).c_str()
-                    : "-");
+                    : "-",
+                intersecting_faces(level.vertices, level.faces).size());
+  }
   std::printf("built in %.2f s; saved %s\n", seconds, options.out_path.c_str());
   return 0;
 }

@@ -13,8 +13,10 @@
 #include <numeric>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "common/error.hpp"
+#include "hierarchy/collapse_guard.hpp"
 #include "hierarchy/joint_flattening.hpp"
 
 namespace progsim {
@@ -112,9 +114,10 @@ struct PendingCollapse {
 /// through every collapse; each time a target count is reached, a level is recorded.
 class Tracker {
  public:
-  Tracker(SurfaceMesh& sm, std::vector<int> targets, std::vector<int> groups,
+  Tracker(SurfaceMesh& sm, CollapseGuard guard, std::vector<int> targets, std::vector<int> groups,
           HierarchyProgress progress, void* user)
       : sm_(sm),
+        guard_(std::move(guard)),
         targets_(std::move(targets)),
         group_(std::move(groups)),
         progress_(progress),
@@ -125,8 +128,9 @@ class Tracker {
     last_level_points_ = add_vertex_points();
   }
 
-  /// Filter: accepts the collapse of profile's edge to `placement` if its joint flattening
-  /// is valid and it makes no triangle worse than kMinTriangleQuality.
+  /// Filter: accepts the collapse of profile's edge to `placement` if it makes no triangle
+  /// worse than kMinTriangleQuality, its joint flattening is valid, and it makes no face cross
+  /// another or come within the contact offsets (CollapseGuard).
   template <class Profile>
   bool prepare(const Profile& profile, const Kernel::Point_3& placement) {
     pending_.reset();
@@ -141,6 +145,9 @@ class Tracker {
     if (!keeps_quality(pending.patch)) return false;
     auto flat = flatten_collapse(pending.patch);
     if (!flat) return false;
+    if (!guard_.allows(static_cast<int>(pending.v0.idx()), static_cast<int>(pending.v1.idx()),
+                       to_vec3(placement), face_ids(pending.before_faces)))
+      return false;
     pending.flat = std::move(*flat);
     pending_ = std::move(pending);
     return true;
@@ -182,6 +189,8 @@ class Tracker {
     const VertexIndex removed = kept == profile.v0() ? profile.v1() : profile.v0();
     group_[kept.idx()] = std::max(group_[kept.idx()], group_[removed.idx()]);
     record_collapse(p, removed, kept);
+    guard_.collapsed(static_cast<int>(removed.idx()), static_cast<int>(kept.idx()),
+                     to_vec3(sm_.point(kept)), face_ids(p.before_faces));
     pending_.reset();
     report_progress();
     while (next_target_ < targets_.size() &&
@@ -192,13 +201,40 @@ class Tracker {
   /// Per input vertex, its current group (−1 free).
   const std::vector<int>& groups() const { return group_; }
 
+  /// Whether vertex v lies on a face that crosses another in the input (CollapseGuard).
+  bool on_input_crossing(VertexIndex v) const {
+    return guard_.on_input_crossing(static_cast<int>(v.idx()));
+  }
+
+  /// For an edge on a crossing of the input, the first of `optimal`, its endpoints and its
+  /// midpoint at which the collapse crosses nothing (CollapseGuard), so that decimation can
+  /// take the crossing out (the quadric optimum keeps a spike through a face where it is);
+  /// `optimal` for other edges or when none does.
+  template <class Profile>
+  typename Profile::Point crossing_free_placement(const Profile& profile,
+                                                  const typename Profile::Point& optimal) const {
+    if (!on_input_crossing(profile.v0()) && !on_input_crossing(profile.v1())) return optimal;
+    const std::vector<int> around = face_ids(faces_around(profile.v0(), profile.v1()));
+    const typename Profile::Point candidates[] = {optimal, profile.p0(), profile.p1(),
+                                                  CGAL::midpoint(profile.p0(), profile.p1())};
+    for (const auto& p : candidates)
+      if (guard_.allows(static_cast<int>(profile.v0().idx()), static_cast<int>(profile.v1().idx()),
+                        to_vec3(p), around, CollapseGuard::CrossingRule::none))
+        return p;
+    return optimal;
+  }
+
   /// The hierarchy, once decimation has ended: levels coarsest first, then the input mesh.
   MeshHierarchy finish(const TriangleMesh& input) {
     if (next_target_ < targets_.size())
       fail(Status::invalid_mesh,
-           "decimation: stopped at " + std::to_string(sm_.number_of_vertices()) +
-               " vertices; no further collapse keeps the surface valid (asked for " +
-               std::to_string(targets_[next_target_]) + ")");
+           "decimation: level " + std::to_string(targets_.size() - 1 - next_target_) + " (" +
+               std::to_string(targets_[next_target_]) +
+               " vertices asked for) cannot be reached: "
+               "stopped at " +
+               std::to_string(sm_.number_of_vertices()) +
+               " vertices, where every further collapse would make faces cross, bring them "
+               "within their contact offsets or leave the surface invalid");
     std::reverse(result_.levels.begin(), result_.levels.end());
     std::reverse(result_.to_next.begin(), result_.to_next.end());
     std::reverse(result_.to_finest.begin(), result_.to_finest.end());
@@ -229,6 +265,23 @@ class Tracker {
     return ids;
   }
 
+  static std::vector<int> face_ids(const std::vector<FaceIndex>& faces) {
+    std::vector<int> ids;
+    for (FaceIndex f : faces) ids.push_back(static_cast<int>(f.idx()));
+    return ids;
+  }
+
+  /// The faces incident to v0 or v1, each once.
+  std::vector<FaceIndex> faces_around(VertexIndex v0, VertexIndex v1) const {
+    std::vector<FaceIndex> faces;
+    for (VertexIndex v : {v0, v1})
+      for (FaceIndex f : CGAL::faces_around_target(sm_.halfedge(v), sm_))
+        if (f != SurfaceMesh::null_face() &&
+            std::find(faces.begin(), faces.end(), f) == faces.end())
+          faces.push_back(f);
+    return faces;
+  }
+
   int local_id(PendingCollapse& p, VertexIndex v) {
     const auto it = std::find(p.vertex_of.begin(), p.vertex_of.end(), v);
     if (it != p.vertex_of.end()) return static_cast<int>(it - p.vertex_of.begin());
@@ -240,11 +293,7 @@ class Tracker {
   /// The faces around v0 and v1. The patch's merged vertex `a` is v1 when the collapse puts
   /// it at v1's position (so that a flattening keeping a's uv keeps its 3D point), else v0.
   void gather_before_faces(PendingCollapse& p, bool merged_at_v1) {
-    for (VertexIndex v : {p.v0, p.v1})
-      for (FaceIndex f : CGAL::faces_around_target(sm_.halfedge(v), sm_))
-        if (f != SurfaceMesh::null_face() &&
-            std::find(p.before_faces.begin(), p.before_faces.end(), f) == p.before_faces.end())
-          p.before_faces.push_back(f);
+    p.before_faces = faces_around(p.v0, p.v1);
     p.patch.a = local_id(p, merged_at_v1 ? p.v1 : p.v0);
     p.patch.b = local_id(p, merged_at_v1 ? p.v0 : p.v1);
     for (FaceIndex f : p.before_faces) {
@@ -404,6 +453,7 @@ class Tracker {
   }
 
   SurfaceMesh& sm_;
+  CollapseGuard guard_;
   std::vector<int> targets_;  ///< descending
   std::vector<int> group_;    ///< per input vertex: its group now (moves to kept vertices)
   std::size_t next_target_ = 0;
@@ -443,11 +493,37 @@ struct KeptVertexPlacement {
     const bool keep1 = (border1 && !border0) || (g1 >= 0 && g0 < 0);
     if (keep0 && keep1) return boost::none;
     if (keep0 || keep1) return keep0 ? profile.p0() : profile.p1();
-    if (!border0 && g0 < 0 && !keep_input_positions) return optimal;
+    if (!border0 && g0 < 0 && !keep_input_positions)
+      return tracker->crossing_free_placement(profile, *optimal);
     const Vec3 p = to_vec3(*optimal);
     return (p - to_vec3(profile.p0())).squaredNorm() <= (p - to_vec3(profile.p1())).squaredNorm()
                ? profile.p0()
                : profile.p1();
+  }
+};
+
+/// CGAL cost: the quadric error (Base), except 0 for an edge with an endpoint on a face that
+/// crosses another in the input (a crossing start), so that such edges are collapsed first and
+/// the guard lets only collapses that remove the crossing through. (A progsim choice.)
+template <class Base>
+struct CrossingFirstCost {
+  using Update_tag = typename Base::Update_tag;  // CGAL updates Base's quadrics through these
+  Base base;
+  const Tracker* tracker;
+  template <class Profile>
+  boost::optional<typename Profile::FT> operator()(
+      const Profile& profile, const boost::optional<typename Profile::Point>& placement) const {
+    if (tracker->on_input_crossing(profile.v0()) || tracker->on_input_crossing(profile.v1()))
+      return typename Profile::FT(0);
+    return base(profile, placement);
+  }
+  template <class Mesh, class PointMap, class Traits>
+  void initialize(const Mesh& mesh, const PointMap& points, const Traits& traits) const {
+    base.initialize(mesh, points, traits);
+  }
+  template <class Profile, class Vertex>
+  void update_after_collapse(const Profile& profile, const Vertex& kept) const {
+    base.update_after_collapse(profile, kept);
   }
 };
 
@@ -500,6 +576,22 @@ std::vector<int> checked_groups(std::vector<int> groups, int n) {
   return groups;
 }
 
+/// The contact offsets: empty (crossings only) or one finite, non-negative value per vertex.
+std::vector<double> checked_offsets(const HierarchyOptions& options, const TriangleMesh& mesh) {
+  const std::vector<double>& offsets = options.contact_offsets;
+  if (offsets.empty()) return offsets;
+  if (static_cast<int>(offsets.size()) != mesh.num_vertices())
+    fail(Status::invalid_argument, "hierarchy: " + std::to_string(offsets.size()) +
+                                       " contact offsets for " +
+                                       std::to_string(mesh.num_vertices()) + " vertices");
+  for (std::size_t v = 0; v < offsets.size(); ++v)
+    if (!(offsets[v] >= 0.0) || !std::isfinite(offsets[v]))
+      fail(Status::invalid_argument, "hierarchy: vertex " + std::to_string(v) +
+                                         " has contact offset " + std::to_string(offsets[v]) +
+                                         " (a finite value >= 0 is needed)");
+  return offsets;
+}
+
 }  // namespace
 
 MeshHierarchy decimate(const TriangleMesh& mesh, const HierarchyOptions& options,
@@ -515,7 +607,8 @@ MeshHierarchy decimate(const TriangleMesh& mesh, const HierarchyOptions& options
     return single;
   }
   SurfaceMesh sm = to_surface_mesh(mesh);
-  Tracker tracker(sm, targets, groups, progress, user);
+  Tracker tracker(sm, CollapseGuard(mesh.vertices, mesh.faces, checked_offsets(options, mesh)),
+                  targets, groups, progress, user);
   const int coarsest = targets.back();
   auto stop = [coarsest](const auto&, const auto& profile, std::size_t, std::size_t) {
     return static_cast<int>(profile.surface_mesh().number_of_vertices()) <= coarsest;
@@ -526,11 +619,11 @@ MeshHierarchy decimate(const TriangleMesh& mesh, const HierarchyOptions& options
   TrackingVisitor visitor;
   visitor.tracker = &tracker;
   const FlatteningFilter filter{&tracker};
-  SMS::edge_collapse(sm, stop,
-                     CGAL::parameters::get_cost(quadrics.get_cost())
-                         .get_placement(placement)
-                         .filter(filter)
-                         .visitor(visitor));
+  using Quadrics = std::remove_cv_t<std::remove_reference_t<decltype(quadrics.get_cost())>>;
+  const CrossingFirstCost<Quadrics> cost{quadrics.get_cost(), &tracker};
+  SMS::edge_collapse(
+      sm, stop,
+      CGAL::parameters::get_cost(cost).get_placement(placement).filter(filter).visitor(visitor));
   return tracker.finish(mesh);
 }
 

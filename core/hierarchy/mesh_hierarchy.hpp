@@ -84,6 +84,10 @@ struct HierarchyOptions {
   /// inside it. For progressive obstacles, whose coarse copies must not bulge into a shell
   /// resting on them.
   bool keep_input_positions = false;
+  /// Empty, or per input vertex its contact offset ξ_v (m, e.g. half the shell thickness): no
+  /// collapse then brings two primitives that contact pairs (a vertex and a face, two edges,
+  /// sharing no vertex) within the sum of their offsets. No collapse ever makes faces cross.
+  std::vector<double> contact_offsets;
 };
 
 /// Level sizes shrinking by a constant factor: round(n / ratio^k) for k = count … 1, coarsest

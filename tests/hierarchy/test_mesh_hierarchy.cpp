@@ -397,7 +397,7 @@ TEST(HierarchyBadInput, TooCoarseForTheSurfaceIsReported) {
   HierarchyOptions options;
   options.coarse_vertex_counts = {150};
   expect_error([&] { build_hierarchy(real_mesh("elephant-with-holes.off"), options); },
-               Status::invalid_mesh, {"stopped at", "asked for 150"});
+               Status::invalid_mesh, {"level 0 (150 vertices asked for)", "stopped at"});
 }
 
 }  // namespace
