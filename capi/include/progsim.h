@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 10
+#define PS_VERSION_MINOR 11
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -268,6 +268,9 @@ typedef struct ps_sim_def {
   double contact_dhat;                  /**< m, activation gap, (0, 10]; default 1e-3 */
   double contact_stiffness;             /**< N/m³, [0, 1e30]; default 0 (adaptive) */
   double contact_friction_velocity;     /**< m/s, (0, 1e3]; default 1e-3 */
+  /** 0 (default) or 1: a progressive simulation may start from a finest rest shape that
+   *  crosses itself (`progsim params`); 0 refuses it with PS_ERROR_INTERSECTING */
+  int32_t contact_crossing_start;
   double solver_newton_tolerance;       /**< 1, (0, 1]; default 1e-5 */
   int32_t solver_max_newton_iterations; /**< ≥ 1; default 100 */
   /** ≥ 0; default 0 (off): CG refinement of projected Newton steps (`progsim params`) */

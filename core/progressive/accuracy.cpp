@@ -210,7 +210,7 @@ std::string obstacle_resolution(const AccuracyReport& report) {
 
 AccuracyReport run_accuracy(const Scene& scene, int max_settles, AccuracyProgress progress,
                             void* user, const DirectSolves& direct) {
-  validate_scene(scene);
+  check_progressive_scene(scene);  // before any work: a crossing input is refused at once
   if (!scene.progressive.enabled())
     fail(Status::invalid_scene, scene.name +
                                     ": an accuracy run needs coarse levels (the scene's "

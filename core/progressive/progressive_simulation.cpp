@@ -9,12 +9,13 @@
 #include "sim/contact_setup.hpp"
 #include "sim/handle_targets.hpp"
 #include "sim/obstacle_script.hpp"
+#include "sim/start_separation.hpp"
 
 namespace progsim {
 namespace {
 
 Scene validated(Scene scene) {
-  validate_scene(scene);
+  check_progressive_scene(scene);
   return scene;
 }
 
@@ -30,24 +31,37 @@ bool same_levels(const ProgressiveSettings& a, const ProgressiveSettings& b) {
          a.level_vertices == b.level_vertices;
 }
 
-}  // namespace
-
-MeshHierarchy build_scene_hierarchy(const Scene& scene, HierarchyProgress progress, void* user) {
-  validate_scene(scene);
+/// build_scene_hierarchy() of a scene that passed check_progressive_scene().
+MeshHierarchy checked_scene_hierarchy(const Scene& scene, HierarchyProgress progress, void* user) {
   const ShellModel model = build_shell_model(scene);
   HierarchyOptions options;
   options.coarse_vertex_counts = coarse_counts(scene.progressive, model.rest.num_vertices());
   options.vertex_groups = vertex_handles(scene, model);
+  if (scene.effects.has(Effect::contact)) options.contact_offsets = shell_contact_offsets(model);
   return build_hierarchy(model.rest, options, progress, user);
+}
+
+}  // namespace
+
+void check_progressive_scene(const Scene& scene) {
+  validate_scene(scene);
+  if (!scene.contact.crossing_start) check_input_contact_free(scene);
+}
+
+MeshHierarchy build_scene_hierarchy(const Scene& scene, HierarchyProgress progress, void* user) {
+  check_progressive_scene(scene);
+  return checked_scene_hierarchy(scene, progress, user);
 }
 
 ProgressiveSimulation::ProgressiveSimulation(Scene scene,
                                              std::shared_ptr<const MeshHierarchy> hierarchy,
                                              HierarchyProgress progress, void* user)
     : scene_(validated(std::move(scene))), hierarchy_(std::move(hierarchy)) {
+  if (scene_.contact.crossing_start && scene_.effects.has(Effect::contact))
+    input_crossing_pairs_ = static_cast<int>(progsim::input_crossing_pairs(scene_));
   if (!hierarchy_)
     hierarchy_ =
-        std::make_shared<const MeshHierarchy>(build_scene_hierarchy(scene_, progress, user));
+        std::make_shared<const MeshHierarchy>(checked_scene_hierarchy(scene_, progress, user));
   if (hierarchy_->num_levels() > 1) {
     std::vector<int> shell_vertices;
     for (const HierarchyLevel& l : hierarchy_->levels)

@@ -55,7 +55,10 @@ class ProgressiveSimulation {
   /// Builds the scene's hierarchy from `scene.progressive` (its handles kept as vertex groups),
   /// or uses `hierarchy`, which must have been built from the scene's merged bodies with its
   /// handles as vertex groups. Starts at level 0 at rest. Throws Error(invalid_scene /
-  /// invalid_argument / unsupported) on bad input, Error(cancelled) if `progress` says stop.
+  /// invalid_argument / unsupported) on bad input, Error(intersecting) before building
+  /// anything if contact is on and the finest rest shape crosses itself or an obstacle or
+  /// touches within an offset (unless scene.contact.crossing_start), and also if a level's
+  /// start does, Error(cancelled) if `progress` says stop.
   explicit ProgressiveSimulation(Scene scene,
                                  std::shared_ptr<const MeshHierarchy> hierarchy = nullptr,
                                  HierarchyProgress progress = nullptr, void* user = nullptr);
@@ -96,6 +99,9 @@ class ProgressiveSimulation {
   const DirectSimulation& current() const { return *sim_; }
   const std::vector<LevelRecord>& records() const { return records_; }
   const Scene& scene() const { return scene_; }
+  /// Crossing face pairs of the finest rest shape among the obstacles at t = 0 (CGAL exact):
+  /// nonzero only for a scene that opted into a crossing start (contact.crossing_start).
+  int input_crossing_pairs() const { return input_crossing_pairs_; }
   /// Positions of level `level` (|V_level| × 3): the live state of the current level, the
   /// state a coarser level was left in, or the current state prolonged to a finer level (with
   /// P^l to the finest level, PSQ eq. 9, and P^k_{k+1} in turn to intermediate ones).
@@ -151,11 +157,19 @@ class ProgressiveSimulation {
   std::unique_ptr<DirectSimulation> sim_;
   std::vector<LevelRecord> records_;
   int level_ = 0;
+  int input_crossing_pairs_ = 0;
 };
 
+/// Validates a scene for a progressive run and, with contact on, its finest shell at rest: a
+/// shell that crosses itself or an obstacle (CGAL's exact predicates) or touches within a
+/// contact offset is refused as on the direct path (Error(intersecting) naming a pair of the
+/// input's faces), unless the scene opts into a crossing start (contact.crossing_start).
+void check_progressive_scene(const Scene& scene);
+
 /// The scene's hierarchy as its `progressive` settings ask: the merged bodies decimated to the
-/// requested coarse level sizes with the handles as vertex groups (a single level when the
-/// settings ask for none).
+/// requested coarse level sizes with the handles as vertex groups and, with contact on, their
+/// contact offsets kept between the faces of every level (a single level when the settings ask
+/// for none). Checks the scene first (check_progressive_scene).
 MeshHierarchy build_scene_hierarchy(const Scene& scene, HierarchyProgress progress = nullptr,
                                     void* user = nullptr);
 

@@ -68,6 +68,9 @@ struct ContactSettings {
   /// grows it when a gap gets tiny (adaptive, IPC §4.3).
   double stiffness = 0.0;
   double friction_velocity = 1e-3;  ///< ε_v (m/s): slip speed below which friction is smoothed
+  /// A progressive run may start from a finest rest shape that crosses itself or an obstacle
+  /// (safe refinement separates it level by level); false: such a scene is refused.
+  bool crossing_start = false;
 };
 
 /// Vertices of one body held on a scripted trajectory (Dirichlet boundary condition).

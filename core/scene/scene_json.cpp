@@ -279,10 +279,11 @@ Ground ground(const Json& j) {
 }
 
 void contact(const Json& j, Scene& scene) {
-  expect_keys(j, "contact", {"dhat", "stiffness", "friction_velocity"});
+  expect_keys(j, "contact", {"dhat", "stiffness", "friction_velocity", "crossing_start"});
   scene.contact.dhat = parameter(j, "contact", "dhat", "contact");
   scene.contact.stiffness = parameter(j, "contact", "stiffness", "contact");
   scene.contact.friction_velocity = parameter(j, "contact", "friction_velocity", "contact");
+  scene.contact.crossing_start = parameter(j, "contact", "crossing_start", "contact") != 0.0;
 }
 
 void simulation(const Json& j, Scene& scene) {

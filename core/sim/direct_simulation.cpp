@@ -12,6 +12,7 @@
 #include "sim/contact_setup.hpp"
 #include "sim/obstacle_script.hpp"
 #include "sim/shell_elastics.hpp"
+#include "sim/start_separation.hpp"
 
 namespace progsim {
 namespace {
@@ -42,16 +43,6 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
   sum.timings.solve += total.timings.solve;
   sum.timings.line_search += total.timings.line_search;
   total = sum;
-}
-
-/// Face pairs of the shell at x and the obstacles (where `contact` holds them) that cross, by
-/// CGAL's exact predicates; at most max_pairs (0: all).
-std::vector<FacePair> crossing_faces(const ContactPotential& contact, const Vector& x,
-                                     std::size_t max_pairs) {
-  Positions all(contact.mesh().num_vertices(), 3);
-  all.topRows(contact.mesh().num_shell_vertices) = as_positions(x);
-  all.bottomRows(contact.mesh().num_obstacle_vertices) = contact.obstacle_positions();
-  return intersecting_faces(all, contact.mesh().faces, max_pairs);
 }
 
 }  // namespace
@@ -186,11 +177,14 @@ ContactPotential& DirectSimulation::add_contact(Problem& problem) {
     contact->set_obstacle_positions(obstacles_->at(time()));
   const double kappa = contact_ ? contact_->stiffness() : start_stiffness_;
   contact->set_stiffness(std::max(contact->stiffness(), kappa));
-  const auto crossing = crossing_faces(*contact, x_, 1);
-  if (!crossing.empty())
-    fail(Status::intersecting,
-         scene_.name + ": the start intersects: " + describe_face(contact->mesh(), crossing[0].a) +
-             " and " + describe_face(contact->mesh(), crossing[0].b) + " cross");
+  if (level_.hierarchy && !level_.is_finest())
+    check_crossing_free(*contact, x_,
+                        scene_.name + ": the start of level " + std::to_string(level_.level) +
+                            " (decimated to " + std::to_string(model_.rest.num_vertices()) +
+                            " vertices) intersects",
+                        level_.hierarchy->levels[level_.level].input_vertex);
+  else
+    check_crossing_free(*contact, x_, scene_.name + ": the start intersects");
   if (fit_to_start_) contact->fit_offsets(x_);
   contact->check_separated(x_);
   return problem.add_term(std::move(contact));

@@ -403,6 +403,41 @@ static void check_refinement_stats(const ps_hierarchy* h, ps_sim_def def) {
   ps_sim_destroy(sim);
 }
 
+/* Issue 28's one rule: a finest mesh that crosses itself, with contact on, is refused before any
+ * work by ps_sim_create and ps_sim_create_from_scene_file, naming a crossing pair of the input,
+ * whatever its coarse levels; contact_crossing_start = 1 lets a progressive simulation start. */
+static void test_crossing_input(void) {
+  ps_sim* sim = NULL;
+  CHECK_ERROR(ps_sim_create_from_scene_file(path_in_source("tests/data/crossing_flap.json"), &sim),
+              PS_ERROR_INTERSECTING, ps_last_error(), "crossing_flap: the input mesh: shell face");
+  CHECK(sim == NULL);
+  ps_hierarchy_def hdef;
+  ps_hierarchy_def_init(&hdef);
+  const int32_t coarse[2] = {40, 100};
+  hdef.coarse_vertex_counts = coarse;
+  hdef.num_coarse_levels = 2;
+  ps_hierarchy* h = NULL;
+  CHECK(ps_hierarchy_create_from_file(&hdef, path_in_source("tests/data/crossing_flap.obj"),
+                                      &h) == PS_OK);
+  if (!h) return;
+  ps_sim_def def;
+  ps_sim_def_init(&def);
+  CHECK(def.contact_crossing_start == 0);
+  def.mode = PS_MODE_QUASISTATIC;
+  def.simulation_time_step = 1.0;
+  def.effects = PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_CONTACT;
+  CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_INTERSECTING, ps_last_error(),
+              "the input mesh: shell face");
+  CHECK(sim == NULL);
+  def.contact_crossing_start = 1;
+  CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
+  ps_sim_destroy(sim);
+  def.contact_crossing_start = 2;
+  CHECK_ERROR(ps_sim_create(h, &def, &sim), PS_ERROR_INVALID_ARGUMENT, ps_last_error(),
+              "contact.crossing_start");
+  ps_hierarchy_destroy(h);
+}
+
 static void test_progressive(void) {
   int32_t top_row[21];
   for (int i = 0; i < 21; ++i) top_row[i] = 420 + i; /* y = 1 in square_cloth.obj */
@@ -685,6 +720,7 @@ int main(int argc, char** argv) {
   test_scene_file();
   test_levels();
   test_progressive();
+  test_crossing_input();
   test_progressive_obstacle();
   test_strain_correction();
   test_cg_refinement();

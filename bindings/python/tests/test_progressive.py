@@ -251,3 +251,21 @@ def test_accuracy_time_ratio_of_the_preview_gives_the_direct_solve_that_many_pre
 def test_accuracy_refuses_direct_solves_that_make_no_sense(keywords, error, match):
     with pytest.raises(error, match=match):
         progsim.Accuracy(PLATE, **keywords)
+
+
+CROSSING = Path(__file__).resolve().parents[3] / "tests" / "data" / "crossing_flap"
+
+
+def test_a_crossing_input_is_refused_unless_the_scene_opts_in():
+    """Issue 28's one rule: a finest mesh that crosses itself, with contact on, is refused naming
+    a crossing pair of the input, from a scene file and from code; crossing_start lets it run."""
+    with pytest.raises(progsim.IntersectingError, match="the input mesh: shell face"):
+        progsim.Simulation.from_scene_file(CROSSING.with_suffix(".json"))
+    with progsim.Hierarchy.from_file(
+        CROSSING.with_suffix(".obj"), coarse_vertex_counts=[40, 100]
+    ) as hierarchy:
+        options = dict(mode="quasistatic", time_step=1.0, effects={"membrane", "contact"})
+        with pytest.raises(progsim.IntersectingError, match="the input mesh: shell face"):
+            progsim.Simulation(hierarchy, **options)
+        with progsim.Simulation(hierarchy, crossing_start=True, **options) as sim:
+            assert sim.get_param("contact.crossing_start") == 1

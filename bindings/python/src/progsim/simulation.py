@@ -46,7 +46,7 @@ MODES: Dict[str, int] = {
     "quasistatic": lib.PS_MODE_QUASISTATIC,
 }
 
-_GROUPS = ("simulation_", "material_", "solver_")
+_GROUPS = ("simulation_", "material_", "contact_", "solver_")
 
 #: Keyword → ps_sim_def field, for the parameter-table fields (``time_step`` →
 #: ``simulation_time_step``). Read from the compiled struct, so new table rows appear here.
@@ -222,6 +222,7 @@ class Simulation(NativeObject):
         max_newton_iterations: Optional[int] = None,
         max_cg_iterations: Optional[int] = None,
         line_search_extrapolation: Optional[bool] = None,
+        crossing_start: Optional[bool] = None,
         mode: str = "dynamic",
         effects: Optional[Iterable[str]] = None,
         gravity: Optional[Sequence[float]] = None,
@@ -252,6 +253,10 @@ class Simulation(NativeObject):
             line_search_extrapolation: default True. Lengthens whole Newton steps whose energy
                 fell much more than predicted (doubling the step while the energy falls and
                 CCD allows); False for comparison runs.
+            crossing_start: default False. True lets a progressive simulation start from a
+                finest rest shape that crosses itself (safe refinement separates it level by
+                level); False refuses it with :class:`~progsim.IntersectingError` naming a
+                crossing pair.
             mode: ``"dynamic"`` (implicit Euler) or ``"quasistatic"`` (energy minimisation
                 per load step).
             effects: names among ``membrane``, ``bending``, ``gravity``, ``pressure``,
@@ -285,6 +290,7 @@ class Simulation(NativeObject):
             "max_newton_iterations": max_newton_iterations,
             "max_cg_iterations": max_cg_iterations,
             "line_search_extrapolation": line_search_extrapolation,
+            "crossing_start": crossing_start,
         }
         for keyword, value in values.items():
             if value is None:

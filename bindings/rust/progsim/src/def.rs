@@ -265,6 +265,10 @@ pub struct SimulationDef {
     /// Friction smoothing speed ε_v, m/s, in (0, 1e3]; default 1e-3
     /// (`contact.friction_velocity`).
     pub contact_friction_velocity: f64,
+    /// A progressive simulation may start from a finest rest shape that crosses itself (safe
+    /// refinement separates it level by level); default false: such a simulation is refused
+    /// with [`Status::Intersecting`] naming a crossing pair (`contact.crossing_start`).
+    pub contact_crossing_start: bool,
     /// Newton stops when ‖p‖∞ / s < tolerance · bounding-box diagonal (s = h for dynamics,
     /// 1 for quasistatics); dimensionless, in (0, 1]; default 1e-5
     /// (`solver.newton_tolerance`).
@@ -321,6 +325,7 @@ impl Default for SimulationDef {
             contact_dhat: raw.contact_dhat,
             contact_stiffness: raw.contact_stiffness,
             contact_friction_velocity: raw.contact_friction_velocity,
+            contact_crossing_start: raw.contact_crossing_start != 0,
             newton_tolerance: raw.solver_newton_tolerance,
             max_newton_iterations: raw.solver_max_newton_iterations,
             max_cg_iterations: raw.solver_max_cg_iterations,
@@ -354,6 +359,7 @@ impl SimulationDef {
         raw.contact_dhat = self.contact_dhat;
         raw.contact_stiffness = self.contact_stiffness;
         raw.contact_friction_velocity = self.contact_friction_velocity;
+        raw.contact_crossing_start = i32::from(self.contact_crossing_start);
         raw.solver_newton_tolerance = self.newton_tolerance;
         raw.solver_max_newton_iterations = self.max_newton_iterations;
         raw.solver_max_cg_iterations = self.max_cg_iterations;

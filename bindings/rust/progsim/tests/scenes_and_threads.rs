@@ -192,3 +192,26 @@ fn hierarchy_moves_to_another_thread() {
     .unwrap();
     assert_eq!(levels, 1);
 }
+
+#[test]
+fn a_crossing_input_is_refused_unless_the_scene_opts_in() {
+    // Issue 28's one rule: a finest mesh that crosses itself, with contact on, is refused naming
+    // a crossing pair of the input, from a scene file and from code; crossing_start lets it run.
+    let err = Simulation::from_scene_file(repo_path("tests/data/crossing_flap.json")).unwrap_err();
+    assert_eq!(err.code, progsim::Status::Intersecting);
+    assert!(err.message.contains("the input mesh: shell face"), "{}", err.message);
+    let def = progsim::HierarchyDef { coarse_vertex_counts: vec![40, 100], ..Default::default() };
+    let hierarchy =
+        Hierarchy::from_file_with(&def, repo_path("tests/data/crossing_flap.obj")).unwrap();
+    let mut sim_def = SimulationDef {
+        mode: progsim::Mode::Quasistatic,
+        time_step: 1.0,
+        effects: progsim::Effect::Membrane | progsim::Effect::Contact,
+        ..SimulationDef::default()
+    };
+    let err = Simulation::new(&hierarchy, &sim_def).unwrap_err();
+    assert_eq!(err.code, progsim::Status::Intersecting);
+    sim_def.contact_crossing_start = true;
+    let sim = Simulation::new(&hierarchy, &sim_def).unwrap();
+    assert_eq!(sim.param("contact.crossing_start"), Ok(1.0));
+}
