@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cli/progress_bar.hpp"
@@ -35,6 +36,51 @@ std::ofstream open_log(const fs::path& dir) {
   return log;
 }
 
+/// How a run ended: summary.json's "status" ("ok", "not_converged", "failed"), "message"
+/// and the last step (and, progressive, level) that ended well.
+struct Outcome {
+  std::string status = "ok";
+  std::string message;
+  int last_good_step = 0;    ///< load steps solved without a failure (direct: the last converged)
+  int last_good_level = -1;  ///< progressive: the finest level left at equilibrium (−1: none)
+
+  bool ok() const { return status == "ok"; }
+  void fail(const std::string& why) {
+    status = "failed";
+    message = why;
+  }
+};
+
+/// Why a solve failed outright (non-finite values, no factorization), or nothing: a solve that
+/// only stopped at its iteration cap is not a failure here.
+std::optional<std::string> solve_failure(const StepRecord& record, const Positions& x) {
+  const NewtonStop stop = record.newton.stop;
+  if (stop == NewtonStop::non_finite || stop == NewtonStop::factorization_failed)
+    return std::string("its Newton solve ended '") + stop_name(stop) + "' after " +
+           std::to_string(record.newton.iterations) + " iterations";
+  if (!x.allFinite()) return std::string("its state is not finite");
+  return std::nullopt;
+}
+
+/// "failed: …" or "not_converged: …" on stderr, and the exit status of a run.
+int finish(const Outcome& outcome) {
+  if (outcome.ok()) return 0;
+  std::fprintf(stderr, "progsim: the simulation %s: %s\n",
+               outcome.status == "failed" ? "failed" : "did not converge", outcome.message.c_str());
+  return kSimulationFailed;
+}
+
+void add_outcome(nlohmann::json& summary, const Outcome& outcome, bool progressive) {
+  summary["status"] = outcome.status;
+  summary["message"] = outcome.message;
+  summary["last_good_step"] = outcome.last_good_step;
+  if (progressive) summary["last_good_level"] = outcome.last_good_level;
+}
+
+std::string outcome_line(const Outcome& outcome) {
+  return "status: " + outcome.status + (outcome.ok() ? "" : " (" + outcome.message + ")") + "\n";
+}
+
 int run_direct(Scene scene, const RunCommand& opt) {
   DirectSimulation sim(std::move(scene));
   const int steps = opt.steps > 0 ? opt.steps : sim.scene().num_steps();
@@ -44,21 +90,46 @@ int run_direct(Scene scene, const RunCommand& opt) {
     write_mesh(numbered(dir, "frame_", frame),
                TriangleMesh{sim.positions(), sim.model().rest.faces});
   };
-  write_frame(0);
   RunSummary summary;
+  Outcome outcome;
   ProgressBar bar(sim.scene().name, steps);
-  for (int s = 1; s <= steps; ++s) {
-    const StepRecord record = sim.step();
-    log << to_json_line(record) << "\n";
-    summary.add(record);
-    if (s % sim.scene().output_every == 0 || s == steps) write_frame(s);
-    if (!opt.quiet) bar.update(s);
+  std::optional<StepRecord> last;
+  int step = 0;  // the step being taken (0: writing the start)
+  try {
+    write_frame(0);
+    for (step = 1; step <= steps; ++step) {
+      last = sim.step();
+      log << to_json_line(*last) << "\n";
+      summary.add(*last);
+      if (const auto why = solve_failure(*last, sim.positions())) {
+        outcome.fail("step " + std::to_string(step) + ": " + *why);
+        break;
+      }
+      if (last->newton.stop == NewtonStop::converged) outcome.last_good_step = step;
+      if (step % sim.scene().output_every == 0 || step == steps) write_frame(step);
+      if (!opt.quiet) bar.update(step);
+    }
+  } catch (const Error& e) {
+    outcome.fail("step " + std::to_string(step) + ": " + status_name(e.status()) + ": " + e.what());
   }
   if (!opt.quiet) bar.finish();
-  std::ofstream(dir / "summary.json") << summary.to_json(sim) << "\n";
-  std::printf("%s", summary.to_text(sim).c_str());
+  if (outcome.ok() && last && last->newton.stop != NewtonStop::converged) {
+    outcome.status = "not_converged";
+    char why[256];
+    std::snprintf(why, sizeof why,
+                  "the last step (%d) ended '%s' after %d Newton iterations with gradient norm "
+                  "%.3g; its state is not an equilibrium",
+                  last->step, stop_name(last->newton.stop), last->newton.iterations,
+                  last->newton.gradient_norm);
+    outcome.message = why;
+  }
+  log.close();  // flushed before the summary, which is written last
+  nlohmann::json json = nlohmann::json::parse(summary.to_json(sim));
+  add_outcome(json, outcome, false);
+  std::ofstream(dir / "summary.json") << json.dump(2) << "\n";  // the last file written
+  std::printf("%s%s", summary.to_text(sim).c_str(), outcome_line(outcome).c_str());
   std::printf("results: %s (frames frame_*.obj, steps.jsonl, summary.json)\n", dir.c_str());
-  return 0;
+  return finish(outcome);
 }
 
 /// A solve's log line, tagged with its level and kind ("step" or "settle").
@@ -70,9 +141,10 @@ std::string tagged_line(const StepRecord& record, int level, const char* kind) {
 }
 
 /// One row per level: its size, work, time and outcome (and error once the finest converged).
+/// Levels not reached (a failed run) have no row.
 nlohmann::json level_rows(const ProgressiveSimulation& psq, const std::vector<int>& crossings) {
   nlohmann::json rows = nlohmann::json::array();
-  for (int l = 0; l <= psq.finest(); ++l) {
+  for (int l = 0; l < static_cast<int>(crossings.size()); ++l) {
     const LevelRecord& r = psq.records()[l];
     nlohmann::json row = {{"level", l},
                           {"vertices", psq.hierarchy().levels[l].rest.num_vertices()},
@@ -132,42 +204,73 @@ int run_progressive(Scene scene, const RunCommand& opt) {
   const auto write_frame = [&](int frame) {  // the preview prolonged to the finest mesh
     write_mesh(numbered(dir, "frame_", frame), TriangleMesh{psq.positions(finest), fine.faces});
   };
-  write_frame(0);
   ProgressBar bar(s.name + " (preview, then levels)", steps + finest + 1);
-  for (int k = 1; k <= steps; ++k) {
-    log << tagged_line(psq.step(), 0, "step") << "\n";
-    if (k % s.output_every == 0 || k == steps) write_frame(k);
-    if (!opt.quiet) bar.update(k);
-  }
+  Outcome outcome;
   std::vector<int> crossings;
-  for (int level = 0;; ++level) {
-    for (int k = 0; k < opt.max_settles && !psq.records()[level].equilibrium; ++k)
-      log << tagged_line(psq.settle(), level, "settle") << "\n";
-    const TriangleMesh& own = psq.hierarchy().levels[level].rest;
-    write_mesh((dir / ("level_" + std::to_string(level) + ".obj")).string(),
-               TriangleMesh{psq.positions(level), own.faces});
-    crossings.push_back(static_cast<int>(psq.current().intersecting_face_pairs()));
-    if (!opt.quiet) bar.update(steps + level + 1);
-    if (level == finest) break;
-    psq.refine();
+  std::string where = "the start";  // what was under way, for a failure's message
+  try {
+    write_frame(0);
+    for (int k = 1; k <= steps; ++k) {
+      where = "load step " + std::to_string(k) + " (preview on level 0)";
+      const StepRecord record = psq.step();
+      log << tagged_line(record, 0, "step") << "\n";
+      if (const auto why = solve_failure(record, psq.current().positions()))
+        fail(Status::numerical_failure, *why);
+      outcome.last_good_step = k;
+      if (k % s.output_every == 0 || k == steps) write_frame(k);
+      if (!opt.quiet) bar.update(k);
+    }
+    for (int level = 0;; ++level) {
+      where = "settling level " + std::to_string(level);
+      for (int k = 0; k < opt.max_settles && !psq.records()[level].equilibrium; ++k) {
+        const StepRecord record = psq.settle();
+        log << tagged_line(record, level, "settle") << "\n";
+        if (const auto why = solve_failure(record, psq.current().positions()))
+          fail(Status::numerical_failure, *why);
+      }
+      const TriangleMesh& own = psq.hierarchy().levels[level].rest;
+      write_mesh((dir / ("level_" + std::to_string(level) + ".obj")).string(),
+                 TriangleMesh{psq.positions(level), own.faces});
+      crossings.push_back(static_cast<int>(psq.current().intersecting_face_pairs()));
+      if (psq.records()[level].equilibrium) outcome.last_good_level = level;
+      if (!opt.quiet) bar.update(steps + level + 1);
+      if (level == finest) break;
+      where = "refining level " + std::to_string(level) + " into " + std::to_string(level + 1);
+      psq.refine();
+    }
+    const LevelRecord& last = psq.records()[finest];
+    if (!last.equilibrium) {
+      outcome.status = "not_converged";
+      char why[256];
+      std::snprintf(why, sizeof why,
+                    "the finest level %d did not reach equilibrium in %d settles (gradient norm "
+                    "%.3g; --max-settles raises the limit)",
+                    finest, last.settles, last.gradient_norm);
+      outcome.message = why;
+    }
+  } catch (const Error& e) {
+    outcome.fail(where + ": " + status_name(e.status()) + ": " + e.what());
   }
   if (!opt.quiet) bar.finish();
   const nlohmann::json rows = level_rows(psq, crossings);
-  const nlohmann::json summary = {{"scene", s.name},
-                                  {"method", "progressive shell quasistatics"},
-                                  {"load_steps", steps},
-                                  {"wall_seconds", total.seconds()},
-                                  {"levels", rows}};
-  std::ofstream(dir / "summary.json") << summary.dump(2) << "\n";
+  nlohmann::json summary = {{"scene", s.name},
+                            {"method", "progressive shell quasistatics"},
+                            {"load_steps", steps},
+                            {"wall_seconds", total.seconds()},
+                            {"levels", rows}};
+  add_outcome(summary, outcome, true);
+  log.close();  // flushed before the summary, which is written last
+  std::ofstream(dir / "summary.json") << summary.dump(2) << "\n";  // the last file written
   std::printf(
       "%s: progressive, %d load steps previewed on level 0, %d levels, %.3g s (errors: "
-      "distance to the converged finest result over its bounding-box diagonal)\n%s",
-      s.name.c_str(), steps, finest + 1, total.seconds(), level_table(rows).c_str());
+      "distance to the converged finest result over its bounding-box diagonal)\n%s%s",
+      s.name.c_str(), steps, finest + 1, total.seconds(), level_table(rows).c_str(),
+      outcome_line(outcome).c_str());
   std::printf(
       "results: %s (frame_*.obj: the preview on the finest mesh; level_*.obj; steps.jsonl; "
       "summary.json)\n",
       dir.c_str());
-  return 0;
+  return finish(outcome);
 }
 
 }  // namespace
@@ -187,6 +290,12 @@ CLI::App* add_run_command(CLI::App& app, RunCommand& options) {
   cmd->add_flag("--direct", options.direct,
                 "solve a progressive scene directly on its finest mesh instead");
   cmd->add_flag("--quiet", options.quiet, "no progress bar");
+  cmd->footer(
+      "Exit status: 0 the run ended \"ok\"; 2 bad input (a malformed scene or mesh, a "
+      "quasistatic body that nothing holds), nothing written; 3 the simulation failed (a "
+      "non-finite solve, an error after the start) or did not converge (the finest level, or a "
+      "direct run's last step). summary.json, written last, records \"status\" and "
+      "\"message\".");
   return cmd;
 }
 

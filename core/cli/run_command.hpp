@@ -7,6 +7,11 @@
 
 namespace progsim::cli {
 
+/// Exit status of a run whose simulation failed (a non-finite or unfactorizable solve, an
+/// error after the start) or did not converge (the finest level, or a direct run's last
+/// step); 2 is bad input, refused before anything is written.
+constexpr int kSimulationFailed = 3;
+
 /// Options of `progsim run SCENE --out DIR [--steps N] [--max-settles N] [--direct] [--quiet]`.
 struct RunCommand {
   std::string scene_path;
@@ -24,6 +29,10 @@ CLI::App* add_run_command(CLI::App& app, RunCommand& options);
 /// mesh; progressive previews prolonged to it), level_*.obj (each level's final state on its
 /// own mesh, progressive), steps.jsonl and summary.json; prints the summary. Everything is
 /// loaded and validated before the folder is touched. Throws progsim::Error on bad input.
+/// Once the run has started, a failure stops it: summary.json, always the last file written,
+/// records the outcome ("status": "ok", "not_converged" or "failed", "message",
+/// "last_good_step", progressive "last_good_level"). Returns 0 when the run ended "ok",
+/// kSimulationFailed otherwise (and says why on stderr).
 int run_run_command(const RunCommand& options);
 
 }  // namespace progsim::cli

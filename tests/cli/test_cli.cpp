@@ -259,3 +259,116 @@ TEST_F(Cli, AccuracyNeedsCoarseLevels) {
   EXPECT_NE(r.output.find("needs coarse levels"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "x"));
 }
+
+namespace {
+
+nlohmann::json read_summary(const fs::path& out) {
+  return nlohmann::json::parse(std::ifstream(out / "summary.json"));
+}
+
+std::string source_scene(const std::string& name) {
+  return std::string(PROGSIM_SOURCE_DIR) + "/scenes/" + name + ".json";
+}
+
+}  // namespace
+
+TEST_F(Cli, RunWithANonFiniteStepFailsExits3AndStopsThere) {
+  // A single handle vertex moved one edge length in the first load step lands on its
+  // neighbour: the faces between them collapse and the solve ends 'non_finite'.
+  const fs::path scene = write("jerk.json", R"({ "name": "jerk",
+    "simulation": {"mode": "quasistatic", "time_step": 1, "duration": 3},
+    "effects": ["membrane", "bending"],
+    "bodies": [{"name": "sheet", "mesh": )" + std::string(kGrid) +
+                                                R"(}],
+    "handles": [{"body": 0, "vertices": [0], "motion": {"velocity": [0.25, 0, 0]}}] })");
+  const fs::path out = dir_ / "out";
+  const CommandResult r = run_cli("run " + scene.string() + " --out " + out.string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("the simulation failed: step 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("non_finite"), std::string::npos) << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "failed");
+  EXPECT_NE(summary.at("message").get<std::string>().find("non_finite"), std::string::npos);
+  EXPECT_EQ(summary.at("last_good_step").get<int>(), 0);
+  EXPECT_EQ(summary.at("steps").get<int>(), 1);  // nothing after the failed step
+  EXPECT_TRUE(fs::exists(out / "frame_00000.obj"));
+  EXPECT_FALSE(fs::exists(out / "frame_00001.obj"));
+}
+
+TEST_F(Cli, RunRefusesAFreeQuasistaticBodyUpFront) {
+  // Under gravity with nothing to hold it, Newton ran this sheet to 2e15 m in 3 steps.
+  expect_rejected(write("free.json", R"({ "name": "free",
+    "simulation": {"mode": "quasistatic", "time_step": 1, "duration": 3},
+    "effects": ["membrane", "bending", "gravity"],
+    "bodies": [{"name": "loose_sheet", "mesh": )" +
+                                         std::string(kGrid) + R"(}] })"),
+                  "body 'loose_sheet' (bodies[0]) is free in a quasistatic scene");
+  const CommandResult r = run_cli("run " + (dir_ / "free.json").string() + " --out x");
+  EXPECT_EQ(r.exit_code, 2) << r.output;  // bad input, not a failed simulation
+}
+
+TEST_F(Cli, DirectRunWhoseLastStepDoesNotConvergeExits3) {
+  // The hanging cloth solved quasistatically with one Newton iteration per step.
+  std::ifstream in(source_scene("hanging_cloth"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find(R"("mode": "dynamic")"), 17, R"("mode": "quasistatic")");
+  text.replace(text.find(R"("max_newton_iterations": 50)"), 27, R"("max_newton_iterations": 1)");
+  const fs::path scene = write("cloth.json", text);
+  const fs::path out = dir_ / "out";
+  const CommandResult r =
+      run_cli("run " + scene.string() + " --out " + out.string() + " --quiet --steps 2");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("did not converge: the last step (2) ended 'max_iterations'"),
+            std::string::npos)
+      << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "not_converged");
+  EXPECT_EQ(summary.at("last_good_step").get<int>(), 0);
+  EXPECT_TRUE(fs::exists(out / "frame_00002.obj"));  // unconverged, but written and marked
+}
+
+TEST_F(Cli, ProgressiveRunWhoseFinestLevelDoesNotConvergeExits3) {
+  // The buckling plate with two Newton iterations per solve and one settle per level: the
+  // finest level's solve after refinement stops at the cap, short of equilibrium.
+  std::ifstream in(source_scene("psq_plate_buckling"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find(R"("effects")"), 9,
+               R"("solver": {"max_newton_iterations": 2}, "effects")");
+  const fs::path out = dir_ / "plate";
+  const CommandResult r = run_cli("run " + write("plate.json", text).string() + " --out " +
+                                  out.string() + " --quiet --steps 2 --max-settles 1");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("did not converge: the finest level 2 did not reach equilibrium"),
+            std::string::npos)
+      << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "not_converged");
+  EXPECT_EQ(summary.at("last_good_step").get<int>(), 2);
+  EXPECT_LT(summary.at("last_good_level").get<int>(), 2);
+  ASSERT_EQ(summary.at("levels").size(), 3u);
+  EXPECT_FALSE(summary.at("levels")[2].at("equilibrium").get<bool>());
+  EXPECT_NE(r.output.find("status: not_converged"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, ProgressiveRunFailingAfterItsStartLeavesAFailedSummaryLast) {
+  // An error once the levels are being refined and settled: level 1's mesh cannot be written
+  // (a folder is in the way), as a full disk would do. The run stops there; the summary says
+  // what failed and what was done, and nothing is written after it.
+  const fs::path out = dir_ / "plate";
+  fs::create_directories(out / "level_1.obj");
+  const CommandResult r = run_cli("run " + source_scene("psq_plate_buckling") + " --out " +
+                                  out.string() + " --quiet --steps 2");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("the simulation failed: settling level 1: io_error"), std::string::npos)
+      << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "failed");
+  EXPECT_NE(summary.at("message").get<std::string>().find("level_1.obj"), std::string::npos);
+  EXPECT_EQ(summary.at("last_good_step").get<int>(), 2);
+  EXPECT_EQ(summary.at("last_good_level").get<int>(), 0);
+  EXPECT_EQ(summary.at("levels").size(), 1u);  // the levels finished: level 0
+  EXPECT_FALSE(fs::exists(out / "level_2.obj"));
+  const auto summary_time = fs::last_write_time(out / "summary.json");
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_LE(entry.last_write_time(), summary_time) << entry.path();
+}
