@@ -12,6 +12,7 @@
 #include "cli/progress_bar.hpp"
 #include "common/error.hpp"
 #include "common/timer.hpp"
+#include "contact/contact_potential.hpp"
 #include "mesh/mesh_io.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
@@ -81,6 +82,23 @@ std::string outcome_line(const Outcome& outcome) {
   return "status: " + outcome.status + (outcome.ok() ? "" : " (" + outcome.message + ")") + "\n";
 }
 
+/// The obstacles as `sim`'s contact meets them now: their positions (a progressive level's
+/// coarse copies, where its script rounds left them) and faces; empty without any.
+TriangleMesh met_obstacles(const DirectSimulation& sim) {
+  const ContactPotential* contact = sim.contact();
+  if (!contact || contact->mesh().num_obstacle_vertices == 0) return {};
+  const CollisionMesh& mesh = contact->mesh();
+  const Faces faces = (mesh.faces.bottomRows(mesh.faces.rows() - mesh.num_shell_faces).array() -
+                       mesh.num_shell_vertices)
+                          .matrix();
+  return {contact->obstacle_positions(), faces};
+}
+
+/// Writes `mesh` unless it is empty.
+void write_nonempty(const std::string& path, const TriangleMesh& mesh) {
+  if (mesh.num_vertices() > 0) write_mesh(path, mesh);
+}
+
 int run_direct(Scene scene, const RunCommand& opt) {
   DirectSimulation sim(std::move(scene));
   const int steps = opt.steps > 0 ? opt.steps : sim.scene().num_steps();
@@ -89,6 +107,7 @@ int run_direct(Scene scene, const RunCommand& opt) {
   const auto write_frame = [&](int frame) {
     write_mesh(numbered(dir, "frame_", frame),
                TriangleMesh{sim.positions(), sim.model().rest.faces});
+    write_nonempty(numbered(dir, "obstacles_", frame), met_obstacles(sim));
   };
   RunSummary summary;
   Outcome outcome;
@@ -128,7 +147,9 @@ int run_direct(Scene scene, const RunCommand& opt) {
   add_outcome(json, outcome, false);
   std::ofstream(dir / "summary.json") << json.dump(2) << "\n";  // the last file written
   std::printf("%s%s", summary.to_text(sim).c_str(), outcome_line(outcome).c_str());
-  std::printf("results: %s (frames frame_*.obj, steps.jsonl, summary.json)\n", dir.c_str());
+  std::printf(
+      "results: %s (frames frame_*.obj%s, steps.jsonl, summary.json)\n", dir.c_str(),
+      sim.scene().obstacles.empty() ? "" : " with the obstacles beside them in obstacles_*.obj");
   return finish(outcome);
 }
 
@@ -200,9 +221,19 @@ int run_progressive(Scene scene, const RunCommand& opt) {
   const int finest = psq.finest();
   const fs::path dir(opt.out_dir);
   std::ofstream log = open_log(dir);
+  // A preview frame is the coarsest level's own state on its own mesh, which contact keeps
+  // intersection-free, beside the obstacles as that level meets them (progressive ones as
+  // coarse copies). The prolonged preview on the finest mesh is what the proxy energy
+  // measures, but can cross itself and enter obstacles (the twist: up to 177 crossing face
+  // pairs): written apart, as prolonged_*.obj.
   const TriangleMesh& fine = psq.hierarchy().levels.back().rest;
-  const auto write_frame = [&](int frame) {  // the preview prolonged to the finest mesh
-    write_mesh(numbered(dir, "frame_", frame), TriangleMesh{psq.positions(finest), fine.faces});
+  const TriangleMesh& coarse = psq.hierarchy().levels[0].rest;
+  const auto write_frame = [&](int frame) {
+    write_mesh(numbered(dir, "frame_", frame), TriangleMesh{psq.positions(0), coarse.faces});
+    write_nonempty(numbered(dir, "obstacles_", frame), met_obstacles(psq.current()));
+    if (finest > 0)
+      write_mesh(numbered(dir, "prolonged_", frame),
+                 TriangleMesh{psq.positions(finest), fine.faces});
   };
   ProgressBar bar(s.name + " (preview, then levels)", steps + finest + 1);
   Outcome outcome;
@@ -229,24 +260,30 @@ int run_progressive(Scene scene, const RunCommand& opt) {
           fail(Status::numerical_failure, *why);
       }
       const TriangleMesh& own = psq.hierarchy().levels[level].rest;
-      write_mesh((dir / ("level_" + std::to_string(level) + ".obj")).string(),
-                 TriangleMesh{psq.positions(level), own.faces});
+      const std::string name = "level_" + std::to_string(level);
+      write_mesh((dir / (name + ".obj")).string(), TriangleMesh{psq.positions(level), own.faces});
+      write_nonempty((dir / (name + "_obstacles.obj")).string(), met_obstacles(psq.current()));
       crossings.push_back(static_cast<int>(psq.current().intersecting_face_pairs()));
       if (psq.records()[level].equilibrium) outcome.last_good_level = level;
       if (!opt.quiet) bar.update(steps + level + 1);
-      if (level == finest) break;
+      if (level == finest || opt.preview_only) break;
       where = "refining level " + std::to_string(level) + " into " + std::to_string(level + 1);
       psq.refine();
     }
-    const LevelRecord& last = psq.records()[finest];
+    const int last_level = opt.preview_only ? 0 : finest;  // the level the run ends on
+    const LevelRecord& last = psq.records()[last_level];
     if (!last.equilibrium) {
       outcome.status = "not_converged";
       char why[256];
       std::snprintf(why, sizeof why,
-                    "the finest level %d did not reach equilibrium in %d settles (gradient norm "
+                    "the %s level %d did not reach equilibrium in %d settles (gradient norm "
                     "%.3g; --max-settles raises the limit)",
-                    finest, last.settles, last.gradient_norm);
+                    opt.preview_only ? "previewed" : "finest", last_level, last.settles,
+                    last.gradient_norm);
       outcome.message = why;
+    } else if (opt.preview_only) {
+      outcome.message = "preview only (--preview-only): level 0 of " + std::to_string(finest + 1) +
+                        " solved, the finer levels not";
     }
   } catch (const Error& e) {
     outcome.fail(where + ": " + status_name(e.status()) + ": " + e.what());
@@ -259,6 +296,7 @@ int run_progressive(Scene scene, const RunCommand& opt) {
                             {"wall_seconds", total.seconds()},
                             {"levels", rows}};
   add_outcome(summary, outcome, true);
+  if (opt.preview_only) summary["preview_only"] = true;
   log.close();  // flushed before the summary, which is written last
   std::ofstream(dir / "summary.json") << summary.dump(2) << "\n";  // the last file written
   std::printf(
@@ -267,9 +305,11 @@ int run_progressive(Scene scene, const RunCommand& opt) {
       s.name.c_str(), steps, finest + 1, total.seconds(), level_table(rows).c_str(),
       outcome_line(outcome).c_str());
   std::printf(
-      "results: %s (frame_*.obj: the preview on the finest mesh; level_*.obj; steps.jsonl; "
+      "results: %s (frame_*.obj: the preview, level 0's own mesh%s; prolonged_*.obj: the "
+      "preview prolonged to the finest mesh, may cross; level_*.obj%s; steps.jsonl; "
       "summary.json)\n",
-      dir.c_str());
+      dir.c_str(), s.obstacles.empty() ? "" : ", obstacles_*.obj: the obstacles it met",
+      s.obstacles.empty() ? "" : " and level_*_obstacles.obj");
   return finish(outcome);
 }
 
@@ -289,6 +329,9 @@ CLI::App* add_run_command(CLI::App& app, RunCommand& options) {
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--direct", options.direct,
                 "solve a progressive scene directly on its finest mesh instead");
+  cmd->add_flag("--preview-only", options.preview_only,
+                "progressive: stop after the preview on level 0 (its load steps and settling); "
+                "no refinement");
   cmd->add_flag("--quiet", options.quiet, "no progress bar");
   cmd->footer(
       "Exit status: 0 the run ended \"ok\"; 2 bad input (a malformed scene or mesh, a "
@@ -308,6 +351,9 @@ int run_run_command(const RunCommand& options) {
                  "progsim run: %s is dynamic; Progressive Dynamics is not implemented, so it is "
                  "solved directly on its finest mesh\n",
                  scene.name.c_str());
+  if (options.preview_only && !(progressive && !options.direct))
+    fail(Status::invalid_argument, "--preview-only needs a progressive run: " + scene.name +
+                                       " has no coarse levels, is dynamic, or --direct was given");
   if (progressive && !options.direct) return run_progressive(std::move(scene), options);
   return run_direct(std::move(scene), options);
 }
