@@ -295,10 +295,12 @@ PS_API void ps_sim_def_init(ps_sim_def* def);
  * described by `def` (nullable: defaults). Starts at level 0 at rest.
  * @param out receives the simulation; caller owns, destroy with ps_sim_destroy().
  * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_INVALID_ARGUMENT (a parameter NaN or out of
- * its range, naming it), PS_ERROR_INVALID_SCENE (a pinned vertex out of range),
- * PS_ERROR_NULL_ARGUMENT. On a multi-level hierarchy the simulation is progressive (PSQ):
- * quasistatic only (PS_MODE_DYNAMIC: PS_ERROR_UNSUPPORTED), and its pinned vertices must be
- * the hierarchy's (ps_hierarchy_def.pinned_vertices; otherwise PS_ERROR_INVALID_ARGUMENT).
+ * its range, naming it), PS_ERROR_INVALID_SCENE (a pinned vertex out of range; quasistatic, a
+ * body that gravity or pressure on an open surface pulls with no pin, no ground or obstacle
+ * under contact and no proximal term to hold it, naming it), PS_ERROR_NULL_ARGUMENT. On a
+ * multi-level hierarchy the simulation is progressive (PSQ): quasistatic only (PS_MODE_DYNAMIC:
+ * PS_ERROR_UNSUPPORTED), and its pinned vertices must be the hierarchy's
+ * (ps_hierarchy_def.pinned_vertices; otherwise PS_ERROR_INVALID_ARGUMENT).
  */
 PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* def, ps_sim** out);
 
@@ -365,7 +367,8 @@ PS_API int32_t ps_param_count(void);
 PS_API int32_t ps_param_info_get(int32_t index, ps_param_info* out);
 
 /** Switches between dynamic and quasistatic stepping (a ps_mode) between steps; velocities
- *  are zeroed when switching to quasistatic. Errors: PS_ERROR_INVALID_ARGUMENT. */
+ *  are zeroed when switching to quasistatic. Errors: PS_ERROR_INVALID_ARGUMENT;
+ *  PS_ERROR_INVALID_SCENE for quasistatic with a body nothing holds (as ps_sim_create). */
 PS_API int32_t ps_sim_set_mode(ps_sim* sim, int32_t mode);
 
 /** The stepping mode (a ps_mode) into *out. */

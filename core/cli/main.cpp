@@ -15,6 +15,11 @@ using namespace progsim;
 int main(int argc, char** argv) {
   CLI::App app{"progsim: progressive simulation of cloth, shells and solids"};
   app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 success; 2 bad input (a malformed scene or mesh), nothing "
+      "written; 3 the simulation failed (a non-finite solve, an error after the start) or did "
+      "not converge (the finest level, or a direct run's last step): summary.json says which "
+      "and why.");
   cli::RunCommand run_options;
   CLI::App* run_cmd = cli::add_run_command(app, run_options);
   cli::HierarchyCommand hierarchy_options;

@@ -6,11 +6,13 @@
 #include <iomanip>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "cli/progress_bar.hpp"
 #include "common/error.hpp"
 #include "common/timer.hpp"
+#include "contact/contact_potential.hpp"
 #include "mesh/mesh_io.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
@@ -35,6 +37,68 @@ std::ofstream open_log(const fs::path& dir) {
   return log;
 }
 
+/// How a run ended: summary.json's "status" ("ok", "not_converged", "failed"), "message"
+/// and the last step (and, progressive, level) that ended well.
+struct Outcome {
+  std::string status = "ok";
+  std::string message;
+  int last_good_step = 0;    ///< load steps solved without a failure (direct: the last converged)
+  int last_good_level = -1;  ///< progressive: the finest level left at equilibrium (−1: none)
+
+  bool ok() const { return status == "ok"; }
+  void fail(const std::string& why) {
+    status = "failed";
+    message = why;
+  }
+};
+
+/// Why a solve failed outright (non-finite values, no factorization), or nothing: a solve that
+/// only stopped at its iteration cap is not a failure here.
+std::optional<std::string> solve_failure(const StepRecord& record, const Positions& x) {
+  const NewtonStop stop = record.newton.stop;
+  if (stop == NewtonStop::non_finite || stop == NewtonStop::factorization_failed)
+    return std::string("its Newton solve ended '") + stop_name(stop) + "' after " +
+           std::to_string(record.newton.iterations) + " iterations";
+  if (!x.allFinite()) return std::string("its state is not finite");
+  return std::nullopt;
+}
+
+/// "failed: …" or "not_converged: …" on stderr, and the exit status of a run.
+int finish(const Outcome& outcome) {
+  if (outcome.ok()) return 0;
+  std::fprintf(stderr, "progsim: the simulation %s: %s\n",
+               outcome.status == "failed" ? "failed" : "did not converge", outcome.message.c_str());
+  return kSimulationFailed;
+}
+
+void add_outcome(nlohmann::json& summary, const Outcome& outcome, bool progressive) {
+  summary["status"] = outcome.status;
+  summary["message"] = outcome.message;
+  summary["last_good_step"] = outcome.last_good_step;
+  if (progressive) summary["last_good_level"] = outcome.last_good_level;
+}
+
+std::string outcome_line(const Outcome& outcome) {
+  return "status: " + outcome.status + (outcome.ok() ? "" : " (" + outcome.message + ")") + "\n";
+}
+
+/// The obstacles as `sim`'s contact meets them now: their positions (a progressive level's
+/// coarse copies, where its script rounds left them) and faces; empty without any.
+TriangleMesh met_obstacles(const DirectSimulation& sim) {
+  const ContactPotential* contact = sim.contact();
+  if (!contact || contact->mesh().num_obstacle_vertices == 0) return {};
+  const CollisionMesh& mesh = contact->mesh();
+  const Faces faces = (mesh.faces.bottomRows(mesh.faces.rows() - mesh.num_shell_faces).array() -
+                       mesh.num_shell_vertices)
+                          .matrix();
+  return {contact->obstacle_positions(), faces};
+}
+
+/// Writes `mesh` unless it is empty.
+void write_nonempty(const std::string& path, const TriangleMesh& mesh) {
+  if (mesh.num_vertices() > 0) write_mesh(path, mesh);
+}
+
 int run_direct(Scene scene, const RunCommand& opt) {
   DirectSimulation sim(std::move(scene));
   const int steps = opt.steps > 0 ? opt.steps : sim.scene().num_steps();
@@ -43,22 +107,50 @@ int run_direct(Scene scene, const RunCommand& opt) {
   const auto write_frame = [&](int frame) {
     write_mesh(numbered(dir, "frame_", frame),
                TriangleMesh{sim.positions(), sim.model().rest.faces});
+    write_nonempty(numbered(dir, "obstacles_", frame), met_obstacles(sim));
   };
-  write_frame(0);
   RunSummary summary;
+  Outcome outcome;
   ProgressBar bar(sim.scene().name, steps);
-  for (int s = 1; s <= steps; ++s) {
-    const StepRecord record = sim.step();
-    log << to_json_line(record) << "\n";
-    summary.add(record);
-    if (s % sim.scene().output_every == 0 || s == steps) write_frame(s);
-    if (!opt.quiet) bar.update(s);
+  std::optional<StepRecord> last;
+  int step = 0;  // the step being taken (0: writing the start)
+  try {
+    write_frame(0);
+    for (step = 1; step <= steps; ++step) {
+      last = sim.step();
+      log << to_json_line(*last) << "\n";
+      summary.add(*last);
+      if (const auto why = solve_failure(*last, sim.positions())) {
+        outcome.fail("step " + std::to_string(step) + ": " + *why);
+        break;
+      }
+      if (last->newton.stop == NewtonStop::converged) outcome.last_good_step = step;
+      if (step % sim.scene().output_every == 0 || step == steps) write_frame(step);
+      if (!opt.quiet) bar.update(step);
+    }
+  } catch (const Error& e) {
+    outcome.fail("step " + std::to_string(step) + ": " + status_name(e.status()) + ": " + e.what());
   }
   if (!opt.quiet) bar.finish();
-  std::ofstream(dir / "summary.json") << summary.to_json(sim) << "\n";
-  std::printf("%s", summary.to_text(sim).c_str());
-  std::printf("results: %s (frames frame_*.obj, steps.jsonl, summary.json)\n", dir.c_str());
-  return 0;
+  if (outcome.ok() && last && last->newton.stop != NewtonStop::converged) {
+    outcome.status = "not_converged";
+    char why[256];
+    std::snprintf(why, sizeof why,
+                  "the last step (%d) ended '%s' after %d Newton iterations with gradient norm "
+                  "%.3g; its state is not an equilibrium",
+                  last->step, stop_name(last->newton.stop), last->newton.iterations,
+                  last->newton.gradient_norm);
+    outcome.message = why;
+  }
+  log.close();  // flushed before the summary, which is written last
+  nlohmann::json json = nlohmann::json::parse(summary.to_json(sim));
+  add_outcome(json, outcome, false);
+  std::ofstream(dir / "summary.json") << json.dump(2) << "\n";  // the last file written
+  std::printf("%s%s", summary.to_text(sim).c_str(), outcome_line(outcome).c_str());
+  std::printf(
+      "results: %s (frames frame_*.obj%s, steps.jsonl, summary.json)\n", dir.c_str(),
+      sim.scene().obstacles.empty() ? "" : " with the obstacles beside them in obstacles_*.obj");
+  return finish(outcome);
 }
 
 /// A solve's log line, tagged with its level and kind ("step" or "settle").
@@ -70,9 +162,10 @@ std::string tagged_line(const StepRecord& record, int level, const char* kind) {
 }
 
 /// One row per level: its size, work, time and outcome (and error once the finest converged).
+/// Levels not reached (a failed run) have no row.
 nlohmann::json level_rows(const ProgressiveSimulation& psq, const std::vector<int>& crossings) {
   nlohmann::json rows = nlohmann::json::array();
-  for (int l = 0; l <= psq.finest(); ++l) {
+  for (int l = 0; l < static_cast<int>(crossings.size()); ++l) {
     const LevelRecord& r = psq.records()[l];
     nlohmann::json row = {{"level", l},
                           {"vertices", psq.hierarchy().levels[l].rest.num_vertices()},
@@ -128,46 +221,96 @@ int run_progressive(Scene scene, const RunCommand& opt) {
   const int finest = psq.finest();
   const fs::path dir(opt.out_dir);
   std::ofstream log = open_log(dir);
+  // A preview frame is the coarsest level's own state on its own mesh, which contact keeps
+  // intersection-free, beside the obstacles as that level meets them (progressive ones as
+  // coarse copies). The prolonged preview on the finest mesh is what the proxy energy
+  // measures, but can cross itself and enter obstacles (the twist: up to 177 crossing face
+  // pairs): written apart, as prolonged_*.obj.
   const TriangleMesh& fine = psq.hierarchy().levels.back().rest;
-  const auto write_frame = [&](int frame) {  // the preview prolonged to the finest mesh
-    write_mesh(numbered(dir, "frame_", frame), TriangleMesh{psq.positions(finest), fine.faces});
+  const TriangleMesh& coarse = psq.hierarchy().levels[0].rest;
+  const auto write_frame = [&](int frame) {
+    write_mesh(numbered(dir, "frame_", frame), TriangleMesh{psq.positions(0), coarse.faces});
+    write_nonempty(numbered(dir, "obstacles_", frame), met_obstacles(psq.current()));
+    if (finest > 0)
+      write_mesh(numbered(dir, "prolonged_", frame),
+                 TriangleMesh{psq.positions(finest), fine.faces});
   };
-  write_frame(0);
   ProgressBar bar(s.name + " (preview, then levels)", steps + finest + 1);
-  for (int k = 1; k <= steps; ++k) {
-    log << tagged_line(psq.step(), 0, "step") << "\n";
-    if (k % s.output_every == 0 || k == steps) write_frame(k);
-    if (!opt.quiet) bar.update(k);
-  }
+  Outcome outcome;
   std::vector<int> crossings;
-  for (int level = 0;; ++level) {
-    for (int k = 0; k < opt.max_settles && !psq.records()[level].equilibrium; ++k)
-      log << tagged_line(psq.settle(), level, "settle") << "\n";
-    const TriangleMesh& own = psq.hierarchy().levels[level].rest;
-    write_mesh((dir / ("level_" + std::to_string(level) + ".obj")).string(),
-               TriangleMesh{psq.positions(level), own.faces});
-    crossings.push_back(static_cast<int>(psq.current().intersecting_face_pairs()));
-    if (!opt.quiet) bar.update(steps + level + 1);
-    if (level == finest) break;
-    psq.refine();
+  std::string where = "the start";  // what was under way, for a failure's message
+  try {
+    write_frame(0);
+    for (int k = 1; k <= steps; ++k) {
+      where = "load step " + std::to_string(k) + " (preview on level 0)";
+      const StepRecord record = psq.step();
+      log << tagged_line(record, 0, "step") << "\n";
+      if (const auto why = solve_failure(record, psq.current().positions()))
+        fail(Status::numerical_failure, *why);
+      outcome.last_good_step = k;
+      if (k % s.output_every == 0 || k == steps) write_frame(k);
+      if (!opt.quiet) bar.update(k);
+    }
+    for (int level = 0;; ++level) {
+      where = "settling level " + std::to_string(level);
+      for (int k = 0; k < opt.max_settles && !psq.records()[level].equilibrium; ++k) {
+        const StepRecord record = psq.settle();
+        log << tagged_line(record, level, "settle") << "\n";
+        if (const auto why = solve_failure(record, psq.current().positions()))
+          fail(Status::numerical_failure, *why);
+      }
+      const TriangleMesh& own = psq.hierarchy().levels[level].rest;
+      const std::string name = "level_" + std::to_string(level);
+      write_mesh((dir / (name + ".obj")).string(), TriangleMesh{psq.positions(level), own.faces});
+      write_nonempty((dir / (name + "_obstacles.obj")).string(), met_obstacles(psq.current()));
+      crossings.push_back(static_cast<int>(psq.current().intersecting_face_pairs()));
+      if (psq.records()[level].equilibrium) outcome.last_good_level = level;
+      if (!opt.quiet) bar.update(steps + level + 1);
+      if (level == finest || opt.preview_only) break;
+      where = "refining level " + std::to_string(level) + " into " + std::to_string(level + 1);
+      psq.refine();
+    }
+    const int last_level = opt.preview_only ? 0 : finest;  // the level the run ends on
+    const LevelRecord& last = psq.records()[last_level];
+    if (!last.equilibrium) {
+      outcome.status = "not_converged";
+      char why[256];
+      std::snprintf(why, sizeof why,
+                    "the %s level %d did not reach equilibrium in %d settles (gradient norm "
+                    "%.3g; --max-settles raises the limit)",
+                    opt.preview_only ? "previewed" : "finest", last_level, last.settles,
+                    last.gradient_norm);
+      outcome.message = why;
+    } else if (opt.preview_only) {
+      outcome.message = "preview only (--preview-only): level 0 of " + std::to_string(finest + 1) +
+                        " solved, the finer levels not";
+    }
+  } catch (const Error& e) {
+    outcome.fail(where + ": " + status_name(e.status()) + ": " + e.what());
   }
   if (!opt.quiet) bar.finish();
   const nlohmann::json rows = level_rows(psq, crossings);
-  const nlohmann::json summary = {{"scene", s.name},
-                                  {"method", "progressive shell quasistatics"},
-                                  {"load_steps", steps},
-                                  {"wall_seconds", total.seconds()},
-                                  {"levels", rows}};
-  std::ofstream(dir / "summary.json") << summary.dump(2) << "\n";
+  nlohmann::json summary = {{"scene", s.name},
+                            {"method", "progressive shell quasistatics"},
+                            {"load_steps", steps},
+                            {"wall_seconds", total.seconds()},
+                            {"levels", rows}};
+  add_outcome(summary, outcome, true);
+  if (opt.preview_only) summary["preview_only"] = true;
+  log.close();  // flushed before the summary, which is written last
+  std::ofstream(dir / "summary.json") << summary.dump(2) << "\n";  // the last file written
   std::printf(
       "%s: progressive, %d load steps previewed on level 0, %d levels, %.3g s (errors: "
-      "distance to the converged finest result over its bounding-box diagonal)\n%s",
-      s.name.c_str(), steps, finest + 1, total.seconds(), level_table(rows).c_str());
+      "distance to the converged finest result over its bounding-box diagonal)\n%s%s",
+      s.name.c_str(), steps, finest + 1, total.seconds(), level_table(rows).c_str(),
+      outcome_line(outcome).c_str());
   std::printf(
-      "results: %s (frame_*.obj: the preview on the finest mesh; level_*.obj; steps.jsonl; "
+      "results: %s (frame_*.obj: the preview, level 0's own mesh%s; prolonged_*.obj: the "
+      "preview prolonged to the finest mesh, may cross; level_*.obj%s; steps.jsonl; "
       "summary.json)\n",
-      dir.c_str());
-  return 0;
+      dir.c_str(), s.obstacles.empty() ? "" : ", obstacles_*.obj: the obstacles it met",
+      s.obstacles.empty() ? "" : " and level_*_obstacles.obj");
+  return finish(outcome);
 }
 
 }  // namespace
@@ -186,7 +329,16 @@ CLI::App* add_run_command(CLI::App& app, RunCommand& options) {
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--direct", options.direct,
                 "solve a progressive scene directly on its finest mesh instead");
+  cmd->add_flag("--preview-only", options.preview_only,
+                "progressive: stop after the preview on level 0 (its load steps and settling); "
+                "no refinement");
   cmd->add_flag("--quiet", options.quiet, "no progress bar");
+  cmd->footer(
+      "Exit status: 0 the run ended \"ok\"; 2 bad input (a malformed scene or mesh, a "
+      "quasistatic body that nothing holds), nothing written; 3 the simulation failed (a "
+      "non-finite solve, an error after the start) or did not converge (the finest level, or a "
+      "direct run's last step). summary.json, written last, records \"status\" and "
+      "\"message\".");
   return cmd;
 }
 
@@ -199,6 +351,9 @@ int run_run_command(const RunCommand& options) {
                  "progsim run: %s is dynamic; Progressive Dynamics is not implemented, so it is "
                  "solved directly on its finest mesh\n",
                  scene.name.c_str());
+  if (options.preview_only && !(progressive && !options.direct))
+    fail(Status::invalid_argument, "--preview-only needs a progressive run: " + scene.name +
+                                       " has no coarse levels, is dynamic, or --direct was given");
   if (progressive && !options.direct) return run_progressive(std::move(scene), options);
   return run_direct(std::move(scene), options);
 }

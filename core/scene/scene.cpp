@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "mesh/mesh_topology.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "scene/parameter_table.hpp"
 
@@ -99,6 +100,43 @@ void validate_progressive(const ProgressiveSettings& p) {
                                       " vertices is too small (at least 4)");
 }
 
+/// What pulls a body in a quasistatic scene ("gravity", "pressure on its open surface"), or
+/// an empty string when its loads cancel (none, or pressure on a closed surface).
+std::string net_load(const Scene& scene, const Body& body) {
+  if (scene.effects.has(Effect::gravity) && scene.gravity.norm() > 0.0) return "gravity";
+  if (scene.effects.has(Effect::pressure) && body.pressure != 0.0) {
+    const MeshTopology topology = build_topology(body.mesh.faces, body.mesh.num_vertices());
+    for (bool on_boundary : topology.edge_on_boundary)
+      if (on_boundary) return "pressure on its open surface";
+  }
+  return {};
+}
+
+/// A quasistatic step minimises the potential energy: a body that a net load pulls and
+/// nothing holds has no minimiser, and Newton runs it off to infinity (a free sheet under
+/// gravity ended 3 steps near 2e15 m). Held: a handle on the body; with contact, a ground, an
+/// obstacle or a held body it could rest on; or PSQ eq. 1's proximal term, which makes every
+/// step a bounded gradient-flow step.
+void validate_held(const Scene& scene) {
+  if (scene.mode != StepMode::quasistatic || scene.progressive.proximal) return;
+  const bool support = scene.effects.has(Effect::contact) &&
+                       (scene.ground.enabled || !scene.obstacles.empty() || !scene.handles.empty());
+  if (support) return;
+  std::vector<bool> handled(scene.bodies.size(), false);
+  for (const Handle& h : scene.handles) handled[h.body] = true;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const std::string load = net_load(scene, scene.bodies[b]);
+    if (handled[b] || load.empty()) continue;
+    fail(Status::invalid_scene,
+         "body '" + scene.bodies[b].name + "' (bodies[" + std::to_string(b) +
+             "]) is free in a quasistatic scene: " + load +
+             " pulls it and nothing holds it, so its load steps have no equilibrium. Hold it "
+             "with a handle, let it rest on a ground or an obstacle (with the 'contact' "
+             "effect), add \"progressive\": {\"proximal\": true} (PSQ eq. 1's proximal term), "
+             "or make the scene dynamic");
+  }
+}
+
 }  // namespace
 
 void validate_scene(const Scene& scene) {
@@ -123,6 +161,7 @@ void validate_scene(const Scene& scene) {
   for (std::size_t h = 0; h < scene.handles.size(); ++h) validate_handle(scene, h);
   validate_contact(scene);
   validate_progressive(scene.progressive);
+  validate_held(scene);
 }
 
 }  // namespace progsim

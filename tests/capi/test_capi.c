@@ -286,6 +286,11 @@ static void test_parameter_listing_mode_and_lifetimes(void) {
   if (!h || !sim) return;
   int32_t mode = -1;
   CHECK(ps_sim_get_mode(sim, &mode) == PS_OK && mode == PS_MODE_DYNAMIC);
+  /* Quasistatic, the unpinned sheet under gravity has no equilibrium: refused, naming it. */
+  CHECK_ERROR(ps_sim_set_mode(sim, PS_MODE_QUASISTATIC), PS_ERROR_INVALID_SCENE,
+              ps_sim_last_error(sim), "is free in a quasistatic scene");
+  CHECK(ps_sim_get_mode(sim, &mode) == PS_OK && mode == PS_MODE_DYNAMIC);
+  CHECK(ps_sim_set_effect(sim, PS_EFFECT_GRAVITY, 0) == PS_OK);
   CHECK(ps_sim_set_mode(sim, PS_MODE_QUASISTATIC) == PS_OK);
   CHECK(ps_sim_get_mode(sim, &mode) == PS_OK && mode == PS_MODE_QUASISTATIC);
   CHECK_ERROR(ps_sim_set_mode(sim, 7), PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),

@@ -1,5 +1,8 @@
 // The progsim CLI end to end: good runs write frames, logs and a summary; bad input exits
 // non-zero with a message naming the problem and writes nothing.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -7,10 +10,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "hierarchy/hierarchy_io.hpp"
+#include "mesh/intersection_check.hpp"
+#include "mesh/mesh_io.hpp"
 
 namespace fs = std::filesystem;
 
@@ -239,17 +245,31 @@ TEST_F(Cli, RunPreviewsAProgressiveSceneThenRefinesItLevelByLevel) {
   // The preview stands for the converged result: its error against it is measured and small.
   EXPECT_LT(levels[0].at("error_max").get<double>(), 0.05);
   EXPECT_EQ(levels[2].at("error_max").get<double>(), 0.0);
-  // Preview frames are on the finest mesh; the log tags every solve with its level.
-  std::ifstream frame(out / "frame_00000.obj");
-  int vertices = 0;
-  for (std::string line; std::getline(frame, line);) vertices += line.rfind("v ", 0) == 0;
-  EXPECT_EQ(vertices, levels[2].at("vertices").get<int>());
+  // Preview frames are on level 0's own mesh, prolonged_*.obj on the finest; the plate has no
+  // obstacles to write beside them. The log tags every solve with its level.
+  const auto vertices_in = [&](const char* name) {
+    std::ifstream frame(out / name);
+    int vertices = 0;
+    for (std::string line; std::getline(frame, line);) vertices += line.rfind("v ", 0) == 0;
+    return vertices;
+  };
+  EXPECT_EQ(vertices_in("frame_00000.obj"), levels[0].at("vertices").get<int>());
+  EXPECT_EQ(vertices_in("prolonged_00010.obj"), levels[2].at("vertices").get<int>());
+  EXPECT_FALSE(fs::exists(out / "obstacles_00000.obj"));
   std::ifstream log(out / "steps.jsonl");
   std::vector<int> solves(3, 0);
   for (std::string line; std::getline(log, line);)
     ++solves.at(nlohmann::json::parse(line)["level"]);
   EXPECT_GT(solves[0], 0);
   EXPECT_GT(solves[2], 0);
+}
+
+TEST_F(Cli, PreviewOnlyNeedsAProgressiveRun) {
+  const CommandResult r = run_cli("run " + scene(kGrid).string() + " --out " +
+                                  (dir_ / "x").string() + " --preview-only");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--preview-only needs a progressive run"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "x"));
 }
 
 TEST_F(Cli, AccuracyNeedsCoarseLevels) {
@@ -259,3 +279,208 @@ TEST_F(Cli, AccuracyNeedsCoarseLevels) {
   EXPECT_NE(r.output.find("needs coarse levels"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "x"));
 }
+
+namespace {
+
+nlohmann::json read_summary(const fs::path& out) {
+  return nlohmann::json::parse(std::ifstream(out / "summary.json"));
+}
+
+std::string source_scene(const std::string& name) {
+  return std::string(PROGSIM_SOURCE_DIR) + "/scenes/" + name + ".json";
+}
+
+}  // namespace
+
+TEST_F(Cli, RunWithANonFiniteStepFailsExits3AndStopsThere) {
+  // A single handle vertex moved one edge length in the first load step lands on its
+  // neighbour: the faces between them collapse and the solve ends 'non_finite'.
+  const fs::path scene = write("jerk.json", R"({ "name": "jerk",
+    "simulation": {"mode": "quasistatic", "time_step": 1, "duration": 3},
+    "effects": ["membrane", "bending"],
+    "bodies": [{"name": "sheet", "mesh": )" + std::string(kGrid) +
+                                                R"(}],
+    "handles": [{"body": 0, "vertices": [0], "motion": {"velocity": [0.25, 0, 0]}}] })");
+  const fs::path out = dir_ / "out";
+  const CommandResult r = run_cli("run " + scene.string() + " --out " + out.string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("the simulation failed: step 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("non_finite"), std::string::npos) << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "failed");
+  EXPECT_NE(summary.at("message").get<std::string>().find("non_finite"), std::string::npos);
+  EXPECT_EQ(summary.at("last_good_step").get<int>(), 0);
+  EXPECT_EQ(summary.at("steps").get<int>(), 1);  // nothing after the failed step
+  EXPECT_TRUE(fs::exists(out / "frame_00000.obj"));
+  EXPECT_FALSE(fs::exists(out / "frame_00001.obj"));
+}
+
+TEST_F(Cli, RunRefusesAFreeQuasistaticBodyUpFront) {
+  // Under gravity with nothing to hold it, Newton ran this sheet to 2e15 m in 3 steps.
+  expect_rejected(write("free.json", R"({ "name": "free",
+    "simulation": {"mode": "quasistatic", "time_step": 1, "duration": 3},
+    "effects": ["membrane", "bending", "gravity"],
+    "bodies": [{"name": "loose_sheet", "mesh": )" +
+                                         std::string(kGrid) + R"(}] })"),
+                  "body 'loose_sheet' (bodies[0]) is free in a quasistatic scene");
+  const CommandResult r = run_cli("run " + (dir_ / "free.json").string() + " --out x");
+  EXPECT_EQ(r.exit_code, 2) << r.output;  // bad input, not a failed simulation
+}
+
+TEST_F(Cli, DirectRunWhoseLastStepDoesNotConvergeExits3) {
+  // The hanging cloth solved quasistatically with one Newton iteration per step.
+  std::ifstream in(source_scene("hanging_cloth"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find(R"("mode": "dynamic")"), 17, R"("mode": "quasistatic")");
+  text.replace(text.find(R"("max_newton_iterations": 50)"), 27, R"("max_newton_iterations": 1)");
+  const fs::path scene = write("cloth.json", text);
+  const fs::path out = dir_ / "out";
+  const CommandResult r =
+      run_cli("run " + scene.string() + " --out " + out.string() + " --quiet --steps 2");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("did not converge: the last step (2) ended 'max_iterations'"),
+            std::string::npos)
+      << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "not_converged");
+  EXPECT_EQ(summary.at("last_good_step").get<int>(), 0);
+  EXPECT_TRUE(fs::exists(out / "frame_00002.obj"));  // unconverged, but written and marked
+}
+
+TEST_F(Cli, ProgressiveRunWhoseFinestLevelDoesNotConvergeExits3) {
+  // The buckling plate with two Newton iterations per solve and one settle per level: the
+  // finest level's solve after refinement stops at the cap, short of equilibrium.
+  std::ifstream in(source_scene("psq_plate_buckling"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find(R"("effects")"), 9,
+               R"("solver": {"max_newton_iterations": 2}, "effects")");
+  const fs::path out = dir_ / "plate";
+  const CommandResult r = run_cli("run " + write("plate.json", text).string() + " --out " +
+                                  out.string() + " --quiet --steps 2 --max-settles 1");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("did not converge: the finest level 2 did not reach equilibrium"),
+            std::string::npos)
+      << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "not_converged");
+  EXPECT_EQ(summary.at("last_good_step").get<int>(), 2);
+  EXPECT_LT(summary.at("last_good_level").get<int>(), 2);
+  ASSERT_EQ(summary.at("levels").size(), 3u);
+  EXPECT_FALSE(summary.at("levels")[2].at("equilibrium").get<bool>());
+  EXPECT_NE(r.output.find("status: not_converged"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, ProgressiveRunFailingAfterItsStartLeavesAFailedSummaryLast) {
+  // An error once the levels are being refined and settled: level 1's mesh cannot be written
+  // (a folder is in the way), as a full disk would do. The run stops there; the summary says
+  // what failed and what was done, and nothing is written after it.
+  const fs::path out = dir_ / "plate";
+  fs::create_directories(out / "level_1.obj");
+  const CommandResult r = run_cli("run " + source_scene("psq_plate_buckling") + " --out " +
+                                  out.string() + " --quiet --steps 2");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("the simulation failed: settling level 1: io_error"), std::string::npos)
+      << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "failed");
+  EXPECT_NE(summary.at("message").get<std::string>().find("level_1.obj"), std::string::npos);
+  EXPECT_EQ(summary.at("last_good_step").get<int>(), 2);
+  EXPECT_EQ(summary.at("last_good_level").get<int>(), 0);
+  EXPECT_EQ(summary.at("levels").size(), 1u);  // the levels finished: level 0
+  EXPECT_FALSE(fs::exists(out / "level_2.obj"));
+  const auto summary_time = fs::last_write_time(out / "summary.json");
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_LE(entry.last_write_time(), summary_time) << entry.path();
+}
+
+namespace {
+
+/// Vertices of `shell` inside or on the closed surfaces of `obstacles`, by CGAL's
+/// side-of-triangle-mesh test (exact predicates).
+int vertices_inside(const progsim::TriangleMesh& shell, const progsim::TriangleMesh& obstacles) {
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+  Mesh mesh;
+  std::vector<Mesh::Vertex_index> index;
+  for (int v = 0; v < obstacles.num_vertices(); ++v)
+    index.push_back(mesh.add_vertex(Kernel::Point_3(
+        obstacles.vertices(v, 0), obstacles.vertices(v, 1), obstacles.vertices(v, 2))));
+  for (int f = 0; f < obstacles.num_faces(); ++f)
+    mesh.add_face(index[obstacles.faces(f, 0)], index[obstacles.faces(f, 1)],
+                  index[obstacles.faces(f, 2)]);
+  EXPECT_TRUE(CGAL::is_closed(mesh)) << "the side test needs closed obstacles";
+  const CGAL::Side_of_triangle_mesh<Mesh, Kernel> side(mesh);
+  int inside = 0;
+  for (int v = 0; v < shell.num_vertices(); ++v)
+    inside += side(Kernel::Point_3(shell.vertices(v, 0), shell.vertices(v, 1),
+                                   shell.vertices(v, 2))) != CGAL::ON_UNBOUNDED_SIDE;
+  return inside;
+}
+
+/// What the frames `stem`NNNNN.obj of a run show: how many, the most crossing face pairs in
+/// one, and the most vertices inside the obstacles written beside it (obstacles_NNNNN.obj).
+struct FrameCheck {
+  int frames = 0, max_crossing_pairs = 0, max_vertices_inside = 0, vertices = 0;
+};
+
+FrameCheck check_frames(const fs::path& out, const std::string& stem) {
+  std::vector<std::string> numbers;  // "00012.obj"
+  for (const auto& entry : fs::directory_iterator(out)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(stem, 0) == 0) numbers.push_back(name.substr(stem.size()));
+  }
+  std::sort(numbers.begin(), numbers.end());
+  FrameCheck check;
+  for (const std::string& number : numbers) {
+    const progsim::TriangleMesh frame = progsim::read_mesh((out / (stem + number)).string());
+    ++check.frames;
+    check.vertices = frame.num_vertices();
+    check.max_crossing_pairs =
+        std::max(check.max_crossing_pairs,
+                 static_cast<int>(progsim::intersecting_faces(frame.vertices, frame.faces).size()));
+    const fs::path obstacles = out / ("obstacles_" + number);
+    if (fs::exists(obstacles))
+      check.max_vertices_inside =
+          std::max(check.max_vertices_inside,
+                   vertices_inside(frame, progsim::read_mesh(obstacles.string())));
+  }
+  return check;
+}
+
+}  // namespace
+
+class CliPreviewFrames : public Cli, public ::testing::WithParamInterface<const char*> {};
+
+/// The preview frames of the bundled PSQ scenes show what the coarsest level solved: its own
+/// mesh, which contact keeps free of crossings and outside the obstacles, beside those
+/// obstacles as it met them. The prolonged frames (the old preview frames) are measured and
+/// printed, not asserted: the twist's cross (177 face pairs), the can's and the drape's enter
+/// the obstacles beside them (21 and 2 vertices).
+TEST_P(CliPreviewFrames, AreCrossingFreeAndOutsideTheObstaclesBesideThem) {
+  const std::string name = GetParam();
+  const fs::path out = dir_ / name;
+  const CommandResult r =
+      run_cli("run " + source_scene(name) + " --out " + out.string() + " --quiet --preview-only");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "ok");
+  EXPECT_TRUE(summary.at("preview_only").get<bool>());
+  EXPECT_EQ(summary.at("levels").size(), 1u);
+  EXPECT_FALSE(fs::exists(out / "level_1.obj"));
+  const FrameCheck frames = check_frames(out, "frame_");
+  const FrameCheck prolonged = check_frames(out, "prolonged_");
+  std::cout << "[ " << name << " ] " << frames.frames << " preview frames of " << frames.vertices
+            << " vertices: at most " << frames.max_crossing_pairs << " crossing face pairs, "
+            << frames.max_vertices_inside << " vertices inside the obstacles; prolonged to "
+            << prolonged.vertices << " vertices: " << prolonged.max_crossing_pairs << " pairs, "
+            << prolonged.max_vertices_inside << " vertices inside" << std::endl;
+  EXPECT_GE(frames.frames, 2);
+  EXPECT_EQ(frames.frames, prolonged.frames);
+  EXPECT_EQ(frames.vertices, summary.at("levels")[0].at("vertices").get<int>());
+  EXPECT_EQ(frames.max_crossing_pairs, 0);
+  EXPECT_EQ(frames.max_vertices_inside, 0);
+  EXPECT_EQ(fs::exists(out / "obstacles_00000.obj"), name != std::string("psq_twist"));
+}
+
+INSTANTIATE_TEST_SUITE_P(BundledScenes, CliPreviewFrames,
+                         ::testing::Values("psq_twist", "psq_can_crush", "psq_cloth_on_sphere"));

@@ -44,12 +44,43 @@ void expect_scene_error(const std::string& text, const std::string& needle) {
 }  // namespace
 
 TEST(SceneJson, BundledScenesParse) {
-  for (const char* name : {"hanging_cloth", "curved_shell", "balloon"}) {
+  // Parsing validates: none is refused, e.g. as a free quasistatic body (the balloon is held
+  // by its closed surface's balanced pressure, the drape by its centre handle and contact).
+  for (const char* name :
+       {"hanging_cloth", "curved_shell", "balloon", "cloth_on_sphere", "twisted_cloth",
+        "psq_balloon", "psq_can_crush", "psq_cloth_on_sphere", "psq_plate_buckling", "psq_twist"}) {
     const Scene scene =
         load_scene_file(std::string(PROGSIM_SOURCE_DIR) + "/scenes/" + name + ".json");
     EXPECT_EQ(scene.name, name);
     EXPECT_FALSE(scene.bodies.empty());
   }
+}
+
+TEST(SceneJson, RefusesAFreeQuasistaticBodyNamingIt) {
+  const std::string quasistatic = R"(, "simulation": {"mode": "quasistatic"})";
+  // Gravity pulls the sheet and nothing holds it: no load step has an equilibrium.
+  expect_scene_error(scene_text("", quasistatic), "body 'sheet' (bodies[0]) is free");
+  expect_scene_error(scene_text("", quasistatic), "proximal");  // says how to hold it
+  // Pressure on an open sheet pulls it too; on a closed sphere it balances.
+  const std::string pressure = R"(["membrane", "pressure"])";
+  expect_scene_error(scene_text(R"(, "pressure": 100)", quasistatic, pressure),
+                     "pressure on its open surface");
+  EXPECT_NO_THROW(
+      parse_scene(scene_text(R"(, "pressure": 100)", quasistatic, pressure,
+                             R"({"generator": "sphere", "radius": 0.1, "subdivisions": 1})"),
+                  "."));
+  // Held: a handle, a ground to rest on with contact, the proximal term, no load, dynamics.
+  EXPECT_NO_THROW(parse_scene(
+      scene_text("", quasistatic + R"(, "handles": [{"body": "sheet", "vertices": [0]}])"), "."));
+  EXPECT_NO_THROW(parse_scene(scene_text("", quasistatic + R"(, "ground": {"height": -1})",
+                                         R"(["membrane", "gravity", "contact"])"),
+                              "."));
+  EXPECT_NO_THROW(
+      parse_scene(scene_text("", quasistatic + R"(, "progressive": {"proximal": true})"), "."));
+  EXPECT_NO_THROW(parse_scene(scene_text("", quasistatic, R"(["membrane"])"), "."));
+  EXPECT_NO_THROW(parse_scene(scene_text(), "."));
+  // A ground without the contact effect holds nothing (and is refused for that already).
+  expect_scene_error(scene_text("", quasistatic + R"(, "ground": {"height": -1})"), "contact");
 }
 
 TEST(SceneJson, ReadsMaterialsHandlesAndDefaults) {

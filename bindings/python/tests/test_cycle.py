@@ -94,11 +94,15 @@ def test_handle_motion_drags_the_pinned_corners(cloth):
 
 
 def test_effects_and_modes(small):
-    with progsim.Simulation(small, effects={"membrane", "gravity"}, mode="quasistatic") as sim:
-        assert sim.effects == {"membrane", "gravity"}
+    # Quasistatic, the unpinned sheet under gravity has no equilibrium: refused, naming it.
+    with pytest.raises(progsim.InvalidSceneError, match="is free in a quasistatic scene"):
+        progsim.Simulation(small, effects={"membrane", "gravity"}, mode="quasistatic")
+    with progsim.Simulation(small, effects={"membrane"}, mode="quasistatic") as sim:
+        assert sim.effects == {"membrane"}
         sim.set_effect("bending", True)
-        assert sim.effects == {"membrane", "gravity", "bending"}
-        sim.set_effect("gravity", False)
+        assert sim.effects == {"membrane", "bending"}
+        with pytest.raises(progsim.InvalidSceneError, match="is free"):
+            sim.set_effect("gravity", True)
         assert sim.effects == {"membrane", "bending"}
         sim.effects = ["membrane", "pressure"]
         assert sim.effects == {"membrane", "pressure"}
