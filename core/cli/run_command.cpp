@@ -297,6 +297,8 @@ int run_progressive(Scene scene, const RunCommand& opt) {
                             {"levels", rows}};
   add_outcome(summary, outcome, true);
   if (opt.preview_only) summary["preview_only"] = true;
+  if (s.contact.crossing_start)  // the scene opted into a crossing rest shape (issue 28)
+    summary["input_crossing_face_pairs"] = psq.input_crossing_pairs();
   log.close();  // flushed before the summary, which is written last
   std::ofstream(dir / "summary.json") << summary.dump(2) << "\n";  // the last file written
   std::printf(
@@ -304,6 +306,9 @@ int run_progressive(Scene scene, const RunCommand& opt) {
       "distance to the converged finest result over its bounding-box diagonal)\n%s%s",
       s.name.c_str(), steps, finest + 1, total.seconds(), level_table(rows).c_str(),
       outcome_line(outcome).c_str());
+  if (s.contact.crossing_start)
+    std::printf("the input crosses itself in %d face pairs (contact.crossing_start)\n",
+                psq.input_crossing_pairs());
   std::printf(
       "results: %s (frame_*.obj: the preview, level 0's own mesh%s; prolonged_*.obj: the "
       "preview prolonged to the finest mesh, may cross; level_*.obj%s; steps.jsonl; "

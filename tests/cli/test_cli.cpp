@@ -484,3 +484,39 @@ TEST_P(CliPreviewFrames, AreCrossingFreeAndOutsideTheObstaclesBesideThem) {
 
 INSTANTIATE_TEST_SUITE_P(BundledScenes, CliPreviewFrames,
                          ::testing::Values("psq_twist", "psq_can_crush", "psq_cloth_on_sphere"));
+
+// Issue 28's one rule: a crossing finest mesh with contact on is refused by `run`, `run
+// --direct` and `accuracy` before any work (exit 2, nothing written), naming a pair of the
+// input's own faces; with contact.crossing_start a progressive run goes through every level
+// and its summary counts the input's crossing pairs.
+TEST_F(Cli, EveryPathRefusesACrossingInputUnlessTheSceneOptsIn) {
+  const std::string scene = std::string(PROGSIM_TEST_DATA_DIR) + "/crossing_flap.json";
+  for (const std::string command : {"run", "run --direct", "accuracy"}) {
+    const fs::path out = dir_ / "refused";
+    const CommandResult r = run_cli(command + " " + scene + " --out " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << command << ": " << r.output;
+    EXPECT_NE(r.output.find("error (intersecting): crossing_flap: "), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find(command == "run --direct" ? "the start intersects: shell face"
+                                                      : "the input mesh: shell face"),
+              std::string::npos)
+        << command << ": " << r.output;
+    EXPECT_FALSE(fs::exists(out)) << command << " wrote " << out;
+  }
+  std::ifstream in(scene);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string dhat = R"("contact": {"dhat": 1e-3})";
+  ASSERT_NE(text.find(dhat), std::string::npos);
+  text.replace(text.find(dhat), dhat.size(), R"("contact": {"dhat": 1e-3, "crossing_start": 1})");
+  const std::string mesh = R"("file": "crossing_flap.obj")";
+  text.replace(text.find(mesh), mesh.size(),
+               R"("file": ")" + std::string(PROGSIM_TEST_DATA_DIR) + R"(/crossing_flap.obj")");
+  const fs::path out = dir_ / "opted_in";
+  const CommandResult r =
+      run_cli("run " + write("opt_in.json", text).string() + " --out " + out.string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json summary = nlohmann::json::parse(std::ifstream(out / "summary.json"));
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_GT(summary["input_crossing_face_pairs"].get<int>(), 0);
+  for (const auto& level : summary["levels"]) EXPECT_EQ(level["crossing_face_pairs"], 0) << level;
+}
