@@ -4,8 +4,6 @@
 // offset (ContactPotential::check_separated on each level, contact's own check).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -17,10 +15,10 @@
 #include "mesh/mesh_generators.hpp"
 #include "mesh/mesh_io.hpp"
 #include "support/expect_error.hpp"
+#include "support/real_meshes.hpp"
 
 using namespace progsim;
 using namespace progsim::test_support;
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -85,14 +83,6 @@ TEST(CollapseGuard, FollowsTheMeshThroughCollapses) {
   EXPECT_TRUE(guard.allows(4, 6, Vec3(0, -0.2, 0.08), around));
 }
 
-fs::path mesh_folder() {
-  const char* cache = std::getenv("PROGSIM_MESH_CACHE");
-  const char* home = std::getenv("HOME");
-  const fs::path root =
-      cache && *cache ? fs::path(cache) : fs::path(home ? home : "") / ".cache/progsim/meshes";
-  return root / "meshes";
-}
-
 struct LevelCase {
   std::string name;
   TriangleMesh mesh;
@@ -103,12 +93,11 @@ struct LevelCase {
 /// the lion head (open, 8356), a locally refined cylinder (irregular, 8285). (The elephant with
 /// holes is left out: scaled to 3 m, the input itself crosses by CGAL's exact predicates.)
 std::vector<LevelCase> level_cases() {
-  const auto real = [](const char* file) { return read_mesh((mesh_folder() / file).string()); };
   return {
       {"square cloth", read_mesh(PROGSIM_SOURCE_DIR "/scenes/meshes/square_cloth.obj"), {30, 110}},
-      {"homer", real("homer.off"), {300, 1000}},
-      {"lion head", real("lion-head.off"), {300, 1200}},
-      {"irregular cylinder", real("cylinder_locally_refined.off"), {300, 1000}}};
+      {"homer", real_mesh("homer.off"), {300, 1000}},
+      {"lion head", real_mesh("lion-head.off"), {300, 1200}},
+      {"irregular cylinder", real_mesh("cylinder_locally_refined.off"), {300, 1000}}};
 }
 
 /// Half the shell thickness of a 1 mm shell: the offsets a scene's contact would use.

@@ -24,6 +24,7 @@
 #include "mesh/mesh_topology.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "support/energy_checks.hpp"
+#include "support/real_meshes.hpp"
 
 using namespace progsim;
 using namespace progsim::test_support;
@@ -58,14 +59,6 @@ TriangleMesh irregular_sheet() {
       }
     }
   return mesh;
-}
-
-TriangleMesh real_mesh(const std::string& name) {
-  const char* cache = std::getenv("PROGSIM_MESH_CACHE");
-  const char* home = std::getenv("HOME");
-  const fs::path root =
-      cache && *cache ? fs::path(cache) : fs::path(home ? home : "") / ".cache/progsim/meshes";
-  return read_mesh((root / "meshes" / name).string());
 }
 
 struct HierarchyCase {

@@ -17,20 +17,13 @@
 #include "mesh/mesh_validation.hpp"
 #include "mesh/off_reader.hpp"
 #include "mesh_test_support.hpp"
+#include "support/real_meshes.hpp"
 
 using namespace progsim;
 using namespace progsim::test_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path mesh_folder() {
-  const char* cache = std::getenv("PROGSIM_MESH_CACHE");
-  const char* home = std::getenv("HOME");
-  const fs::path root =
-      cache && *cache ? fs::path(cache) : fs::path(home ? home : "") / ".cache/progsim/meshes";
-  return root / "meshes";
-}
 
 /// The vertex and face counts in an OFF header, read here independently of CGAL.
 std::array<int, 2> off_header_counts(const fs::path& path) {
@@ -60,7 +53,7 @@ class RealMeshes : public ::testing::Test {
 
   std::string path(const std::string& file) const { return (folder_ / file).string(); }
 
-  const fs::path folder_ = mesh_folder();
+  const fs::path folder_ = real_mesh_folder();
 };
 
 TEST_F(RealMeshes, WellFormedModelsValidateWithTheTopologyOfTheirShape) {
