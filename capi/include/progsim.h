@@ -139,7 +139,12 @@ typedef struct ps_hierarchy_def {
    *  these. Nullable; borrowed during the create call only. */
   const int32_t* pinned_vertices;
   size_t num_pinned_vertices; /**< entries in pinned_vertices; default 0 */
-  int32_t internal_cookie;    /**< set by ps_hierarchy_def_init(); do not touch */
+  /** m, ≥ 0; default 0. Coarse levels never cross themselves; with a contact offset ξ (half
+   *  the shell thickness a contact simulation will use), no collapse also brings a vertex and
+   *  a face, or two edges, that share no vertex within 2ξ (what contact checks at a level's
+   *  start). Scenes (ps_sim_create_from_scene*) set it from their thickness themselves. */
+  double contact_offset;
+  int32_t internal_cookie; /**< set by ps_hierarchy_def_init(); do not touch */
 } ps_hierarchy_def;
 
 /** Fills def with defaults (single level). def must not be NULL. */

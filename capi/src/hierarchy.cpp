@@ -57,6 +57,10 @@ HierarchyOptions hierarchy_options(const ps_hierarchy_def* def, std::size_t num_
                      "num_coarse_levels", 64);
   options.coarse_vertex_counts.assign(counts.begin(), counts.end());
   if (num_vertices > 0) options.vertex_groups = pinned_groups(*def, num_vertices);
+  if (!(def->contact_offset >= 0.0) || !std::isfinite(def->contact_offset))
+    api_fail(PS_ERROR_INVALID_ARGUMENT, "contact_offset = " + std::to_string(def->contact_offset) +
+                                            " is invalid: it must be a finite length >= 0 (m)");
+  if (def->contact_offset > 0.0) options.contact_offsets.assign(num_vertices, def->contact_offset);
   return options;
 }
 

@@ -425,6 +425,18 @@ static void test_crossing_input(void) {
   CHECK(ps_hierarchy_create_from_file(&hdef, path_in_source("tests/data/crossing_flap.obj"),
                                       &h) == PS_OK);
   if (!h) return;
+  /* The hierarchy's contact offset: checked, and kept by the levels it builds. */
+  CHECK(hdef.contact_offset == 0.0);
+  hdef.contact_offset = -1e-3;
+  ps_hierarchy* bad = NULL;
+  CHECK_ERROR(ps_hierarchy_create_from_file(
+                  &hdef, path_in_source("tests/data/crossing_flap.obj"), &bad),
+              PS_ERROR_INVALID_ARGUMENT, ps_last_error(), "contact_offset = -0.001");
+  CHECK(bad == NULL);
+  hdef.contact_offset = 2.5e-4;
+  CHECK(ps_hierarchy_create_from_file(&hdef, path_in_source("tests/data/crossing_flap.obj"),
+                                      &bad) == PS_OK);
+  ps_hierarchy_destroy(bad);
   ps_sim_def def;
   ps_sim_def_init(&def);
   CHECK(def.contact_crossing_start == 0);

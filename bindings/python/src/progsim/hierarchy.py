@@ -18,6 +18,7 @@ from ._native import (
     fetch_rows,
     index_buffer,
     output_array,
+    real_value,
 )
 from ._progsim_cffi import ffi, lib
 
@@ -30,7 +31,10 @@ PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 
 
 def _hierarchy_def(
-    coarse_vertex_counts: Optional[Sequence[int]], pinned: Optional[Sequence[int]], run: ProgressRun
+    coarse_vertex_counts: Optional[Sequence[int]],
+    pinned: Optional[Sequence[int]],
+    contact_offset: float,
+    run: ProgressRun,
 ):
     """A filled ``ps_hierarchy_def*`` with the progress trampoline installed, and the buffers
     it borrows (keep them alive during the call)."""
@@ -42,16 +46,17 @@ def _hierarchy_def(
     pins, pin_buffer = index_buffer(pinned, "pinned")
     definition.pinned_vertices = pin_buffer
     definition.num_pinned_vertices = int(pins.size)
+    definition.contact_offset = real_value(contact_offset, "contact_offset")
     run.install(definition)
     return definition, (counts, buffer, pins, pin_buffer)
 
 
 def _create(
-    function, coarse_vertex_counts, pinned, progress: ProgressArg, *args: Any
+    function, coarse_vertex_counts, pinned, contact_offset, progress: ProgressArg, *args: Any
 ) -> "ffi.CData":
     """Runs a ps_hierarchy_create* call with a def and progress reporting; returns the handle."""
     run = ProgressRun(progress)
-    definition, keep = _hierarchy_def(coarse_vertex_counts, pinned, run)
+    definition, keep = _hierarchy_def(coarse_vertex_counts, pinned, contact_offset, run)
     out = ffi.new("ps_hierarchy**")
     try:
         status = function(definition, *args, out)
@@ -89,6 +94,7 @@ class Hierarchy(NativeObject):
         *,
         coarse_vertex_counts: Optional[Sequence[int]] = None,
         pinned: Optional[Sequence[int]] = None,
+        contact_offset: float = 0.0,
         progress: ProgressArg = False,
     ) -> None:
         """Builds a hierarchy from a triangle mesh, validating it first.
@@ -102,6 +108,9 @@ class Hierarchy(NativeObject):
                 4 and below n); ``None`` or empty: a single level, the mesh itself.
             pinned: vertices a simulation will pin (``Simulation(pinned=...)``): kept on every
                 level at their rest positions. A progressive simulation's pins must be these.
+            contact_offset: m, >= 0; default 0. Coarse levels never cross themselves; with
+                the offset ξ a contact simulation will use (half the shell thickness), no
+                collapse also brings a vertex and a face, or two edges, within 2ξ.
             progress: ``True`` for a tqdm bar over the decimation, ``False`` for none, or a
                 callable ``(done, total, phase) -> bool`` (percent; return True to cancel).
 
@@ -120,6 +129,7 @@ class Hierarchy(NativeObject):
                 lib.ps_hierarchy_create,
                 coarse_vertex_counts,
                 pinned,
+                contact_offset,
                 progress,
                 ffi.from_buffer("double[]", vertex_array),
                 vertex_array.shape[0],
@@ -135,6 +145,7 @@ class Hierarchy(NativeObject):
         *,
         coarse_vertex_counts: Optional[Sequence[int]] = None,
         pinned: Optional[Sequence[int]] = None,
+        contact_offset: float = 0.0,
         progress: ProgressArg = False,
     ) -> "Hierarchy":
         """Builds a hierarchy from an OBJ, OFF or PLY triangle mesh file (positions in metres),
@@ -151,6 +162,7 @@ class Hierarchy(NativeObject):
                 lib.ps_hierarchy_create_from_file,
                 coarse_vertex_counts,
                 pinned,
+                contact_offset,
                 progress,
                 os.fsencode(path),
             )

@@ -10,7 +10,7 @@ use crate::{Error, Result, Status};
 
 /// How to build a [`Hierarchy`](crate::Hierarchy). The default (no coarse levels) gives one
 /// level: the input mesh itself.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct HierarchyDef {
     /// Vertex count of each level below the finest (distinct, each at least 4 and below the
     /// mesh's; any order). Empty: a single level.
@@ -18,6 +18,10 @@ pub struct HierarchyDef {
     /// Vertices a simulation will pin ([`SimulationDef`]'s pinned vertices): kept on every
     /// level at their rest positions. A progressive simulation's pins must be exactly these.
     pub pinned_vertices: Vec<i32>,
+    /// Contact offset ξ, m, ≥ 0; default 0. Coarse levels never cross themselves; with the
+    /// offset a contact simulation will use (half the shell thickness), no collapse also brings
+    /// a vertex and a face, or two edges, within 2ξ (`ps_hierarchy_def.contact_offset`).
+    pub contact_offset: f64,
 }
 
 impl HierarchyDef {
@@ -39,6 +43,7 @@ impl HierarchyDef {
             raw.pinned_vertices = self.pinned_vertices.as_ptr();
             raw.num_pinned_vertices = self.pinned_vertices.len();
         }
+        raw.contact_offset = self.contact_offset;
         Ok(raw)
     }
 }

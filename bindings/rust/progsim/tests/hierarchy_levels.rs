@@ -77,8 +77,11 @@ fn bad_requests_are_errors() {
 #[test]
 fn progressive_preview_refines_to_the_converged_finest() {
     let top_row: Vec<i32> = (420..441).collect(); // y = 1 in the bundled square cloth
-    let def =
-        HierarchyDef { coarse_vertex_counts: vec![40, 120], pinned_vertices: top_row.clone() };
+    let def = HierarchyDef {
+        coarse_vertex_counts: vec![40, 120],
+        pinned_vertices: top_row.clone(),
+        ..Default::default()
+    };
     let hierarchy = Hierarchy::from_file_with(&def, square_cloth()).unwrap();
     let mut sim_def = SimulationDef::default();
     sim_def.mode = Mode::Quasistatic;

@@ -5,7 +5,7 @@ mod common;
 use std::thread;
 
 use common::{repo_path, square_cloth, TOP_CORNERS};
-use progsim::{Hierarchy, LevelStats, Simulation, SimulationDef};
+use progsim::{Hierarchy, HierarchyDef, LevelStats, Simulation, SimulationDef};
 
 /// On a two-level scene: preview steps, equilibrium on the coarse level, refinement,
 /// equilibrium on the finest; the two levels' statistics.
@@ -200,7 +200,7 @@ fn a_crossing_input_is_refused_unless_the_scene_opts_in() {
     let err = Simulation::from_scene_file(repo_path("tests/data/crossing_flap.json")).unwrap_err();
     assert_eq!(err.code, progsim::Status::Intersecting);
     assert!(err.message.contains("the input mesh: shell face"), "{}", err.message);
-    let def = progsim::HierarchyDef { coarse_vertex_counts: vec![40, 100], ..Default::default() };
+    let def = HierarchyDef { coarse_vertex_counts: vec![40, 100], ..Default::default() };
     let hierarchy =
         Hierarchy::from_file_with(&def, repo_path("tests/data/crossing_flap.obj")).unwrap();
     let mut sim_def = SimulationDef {
@@ -214,4 +214,20 @@ fn a_crossing_input_is_refused_unless_the_scene_opts_in() {
     sim_def.contact_crossing_start = true;
     let sim = Simulation::new(&hierarchy, &sim_def).unwrap();
     assert_eq!(sim.param("contact.crossing_start"), Ok(1.0));
+}
+
+#[test]
+fn hierarchy_contact_offset_is_checked() {
+    // ps_hierarchy_def.contact_offset: a length >= 0 (the levels keep it; C++ tests measure).
+    let mesh = repo_path("tests/data/crossing_flap.obj");
+    let bad = HierarchyDef {
+        coarse_vertex_counts: vec![40],
+        contact_offset: -1e-3,
+        ..Default::default()
+    };
+    let err = Hierarchy::from_file_with(&bad, &mesh).unwrap_err();
+    assert_eq!(err.code, progsim::Status::InvalidArgument);
+    assert!(err.message.contains("contact_offset"), "{}", err.message);
+    let good = HierarchyDef { contact_offset: 2.5e-4, ..bad };
+    assert_eq!(Hierarchy::from_file_with(&good, &mesh).unwrap().num_levels(), 2);
 }
