@@ -6,9 +6,6 @@
 namespace progsim {
 namespace {
 
-/// Iteration cap of the advancement loop; reaching it returns the (safe) current t.
-constexpr int kMaxIterations = 1000000;
-
 /// Classifies the closest pair of a stencil (classify_point_triangle or classify_edge_edge).
 using Classifier = ClosestPair (*)(const Vec12&);
 
@@ -39,7 +36,7 @@ double gap(const Vec12& x, Classifier classify, double thickness) {
 /// Conservative advancement (C-IPC Alg. 1) with centred displacements dx and the bound l_p on
 /// the rate at which the distance can shrink.
 double advance(const Vec12& x, const Vec12& dx, double l_p, Classifier classify, double thickness,
-               double s, double t_max) {
+               double s, double t_max, int max_iterations) {
   const double g0 = gap(x, classify, thickness);
   if (g0 <= 0.0) return 0.0;
   if (l_p == 0.0) return t_max;
@@ -47,7 +44,7 @@ double advance(const Vec12& x, const Vec12& dx, double l_p, Classifier classify,
   double t_l = (1.0 - s) * g0 / l_p;  // first step keeps a gap ≥ s(d₀ − ξ)
   Vec12 xt = x;
   double t = 0.0;
-  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
     xt += t_l * dx;
     const double g = gap(xt, classify, thickness);
     if ((t > 0.0 && g < g_min) || g <= 0.0) return t;  // g ≤ 0 only by rounding
@@ -61,19 +58,19 @@ double advance(const Vec12& x, const Vec12& dx, double l_p, Classifier classify,
 }  // namespace
 
 double additive_ccd_point_triangle(const Vec12& x, const Vec12& dx, double thickness, double s,
-                                   double t_max) {
+                                   double t_max, int max_iterations) {
   const Vec12 d = centered(dx);
   // l_p = ‖dp‖ + max_k ‖dt_k‖ bounds how fast the distance can shrink (C-IPC Alg. 1)
   const double l_p = d.segment<3>(0).norm() + max_norm(d, 1, 4);
-  return advance(x, d, l_p, classify_point_triangle, thickness, s, t_max);
+  return advance(x, d, l_p, classify_point_triangle, thickness, s, t_max, max_iterations);
 }
 
 double additive_ccd_edge_edge(const Vec12& x, const Vec12& dx, double thickness, double s,
-                              double t_max) {
+                              double t_max, int max_iterations) {
   const Vec12 d = centered(dx);
   // l_p = max(‖da0‖, ‖da1‖) + max(‖db0‖, ‖db1‖) (C-IPC Alg. 1)
   const double l_p = max_norm(d, 0, 2) + max_norm(d, 2, 4);
-  return advance(x, d, l_p, classify_edge_edge, thickness, s, t_max);
+  return advance(x, d, l_p, classify_edge_edge, thickness, s, t_max, max_iterations);
 }
 
 }  // namespace progsim

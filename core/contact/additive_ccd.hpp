@@ -6,23 +6,30 @@
 
 namespace progsim {
 
+/// Default iteration cap of the advancement; reaching it returns the (safe) t reached so far.
+inline constexpr int kAccdMaxIterations = 1000000;
+
 /// Largest safe step t ∈ [0, t_max] along x(t) = x + t·dx for a point–triangle stencil
 /// (p, t0, t1, t2) that conservative advancement finds: the distance stays above ξ on [0, t]
 /// and, if t < t_max, is at least ξ + s·(d(x) − ξ) at t. Returns 0 if the pair already is within
 /// the thickness (d(x) ≤ ξ), t_max if there is no relative motion or the advancement reaches
 /// t_max before the gap falls below s·(d(x) − ξ).
-/// A gap d(x) − ξ at rounding level may end at the iteration cap (10⁶ steps) with a tiny t.
+/// Each iteration advances t by at most 0.9 (d(x(t)) − ξ)/l_p (l_p bounds how fast the distance
+/// can shrink), so a pair sliding along at a gap small against its motion needs about
+/// l_p/gap iterations; at the cap `max_iterations` it returns the t reached, safe but short
+/// (about 0.9 · max_iterations · gap / l_p). A gap at rounding level may end so with a tiny t.
 /// @param x stencil positions at t = 0 (12)
 /// @param dx displacement (12)
 /// @param thickness ξ ≥ 0, the distance the pair must never get below
 /// @param s ∈ (0, 1), the fraction of the initial gap d(x) − ξ kept at the returned t (C-IPC
 ///        uses 0.1)
 /// @param t_max upper bound on t (usually 1)
+/// @param max_iterations cap on the advancement's iterations
 double additive_ccd_point_triangle(const Vec12& x, const Vec12& dx, double thickness, double s,
-                                   double t_max);
+                                   double t_max, int max_iterations = kAccdMaxIterations);
 
 /// As additive_ccd_point_triangle() for an edge–edge stencil (ea0, ea1, eb0, eb1).
 double additive_ccd_edge_edge(const Vec12& x, const Vec12& dx, double thickness, double s,
-                              double t_max);
+                              double t_max, int max_iterations = kAccdMaxIterations);
 
 }  // namespace progsim

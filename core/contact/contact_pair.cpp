@@ -47,7 +47,7 @@ double pair_distance_squared(const ContactPair& pair, const Vec12& xs, const Gro
 }
 
 double pair_safe_step(const ContactPair& pair, const Vec12& xs, const Vec12& dx, double offset,
-                      double s, const GroundPlane* ground) {
+                      double s, const GroundPlane* ground, int max_iterations) {
   switch (pair.kind) {
     case ContactPair::Kind::ground: {
       const double approach = -ground->normal.dot(dx.head<3>());
@@ -55,9 +55,9 @@ double pair_safe_step(const ContactPair& pair, const Vec12& xs, const Vec12& dx,
       return approach > 0.0 ? std::clamp((1.0 - s) * gap / approach, 0.0, 1.0) : 1.0;
     }
     case ContactPair::Kind::vertex_face:
-      return additive_ccd_point_triangle(xs, dx, offset, s, 1.0);
+      return additive_ccd_point_triangle(xs, dx, offset, s, 1.0, max_iterations);
     case ContactPair::Kind::edge_edge:
-      return additive_ccd_edge_edge(xs, dx, offset, s, 1.0);
+      return additive_ccd_edge_edge(xs, dx, offset, s, 1.0, max_iterations);
   }
   return 0.0;
 }

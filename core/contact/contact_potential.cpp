@@ -259,7 +259,8 @@ double ContactPotential::ccd(const Positions& p0, const Positions& p1) {
     const Pair p = pair(k);
     const Vec12 xs = stencil_positions(p.vertices, p0);
     const Vec12 dx = stencil_positions(p.vertices, p1) - xs;
-    alpha = std::min(alpha, pair_safe_step(p, xs, dx, p.offset, kCcdRescaling, ground()));
+    alpha = std::min(
+        alpha, pair_safe_step(p, xs, dx, p.offset, kCcdRescaling, ground(), ccd_max_iterations_));
   }
   return alpha;
 }
@@ -409,6 +410,13 @@ void ContactPotential::set_moving_vertices(std::vector<char> moving) {
                                        " moving flags for " + std::to_string(mesh_.num_vertices()) +
                                        " vertices");
   moving_ = std::move(moving);
+}
+
+void ContactPotential::set_ccd_max_iterations(int max_iterations) {
+  if (max_iterations <= 0)
+    fail(Status::invalid_argument,
+         "contact: CCD iteration cap " + std::to_string(max_iterations) + " is not positive");
+  ccd_max_iterations_ = max_iterations;
 }
 
 int ContactPotential::fit_offsets(const Vector& x) {

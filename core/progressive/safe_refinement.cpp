@@ -235,7 +235,21 @@ class Expansion {
       if (has_j[pair.a] || has_j[pair.b]) return false;
     const int local_j =
         static_cast<int>(std::find(vertices.begin(), vertices.end(), j) - vertices.begin());
-    return patch_clearance(points, faces, local_j) >= kMinClearance * size;
+    return patch_clearance(points, faces, local_j) >= kMinClearance * size &&
+           clear_of_ground(j, fine_index_[record.kept]);
+  }
+
+  /// The new vertex j keeps its partner k's gap to the ground: at least far_ratio of it above
+  /// its offset, or, if k is within its offset, at least far_ratio of k's height (the patch
+  /// check does not see the ground, and a vertex on or below it is 0 m from it).
+  bool clear_of_ground(int j, int k) const {
+    if (!around_.ground) return true;
+    const auto height = [this](int v) {
+      return around_.ground->normal.dot(x_.row(v).transpose()) - around_.ground->height;
+    };
+    const double offset = around_.vertex_offset[j], h_k = height(k), h_j = height(j);
+    return h_k > offset ? h_j - offset >= settings_.far_ratio * (h_k - offset)
+                        : h_j >= settings_.far_ratio * h_k && h_j > 0.0;
   }
 
   /// The smallest gap at the vertices of a split's patch that are present (before the split).
@@ -312,6 +326,15 @@ class Expansion {
       for (int v : p.vertices)
         if (v >= 0 && moves[v]) t[owner[v]] = std::min(t[owner[v]], bound);
     }
+    if (around_.ground)  // the broad phase has no ground pairs: a target below it sank j
+      for (int b = 0; b < n; ++b) {
+        const ContactPair p = ground_pair(mesh_, moved[b]);
+        const Vec12 xs = stencil_positions(p.vertices, points_);
+        const double d = pair_distance(p);
+        t[b] = std::min(
+            t[b], pair_safe_step(p, xs, stencil_positions(p.vertices, end) - xs,
+                                 d > p.offset ? p.offset : 0.0, settings_.far_ratio, ground()));
+      }
     std::vector<char> done(n, 0);
 #pragma omp parallel for schedule(dynamic, 4)
     for (int b = 0; b < n; ++b) {

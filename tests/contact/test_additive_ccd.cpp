@@ -191,3 +191,17 @@ TEST(AdditiveCcd, GapAtRoundingLevelStopsAtTheIterationCap) {
   EXPECT_LT(t, 1e-6);
   EXPECT_GT(distance_squared(x + t * dx, classify_edge_edge(x + t * dx)), 0.0);
 }
+
+TEST(AdditiveCcd, SlidingAtATinyGapIsCutShortSafelyByALowerIterationCap) {
+  // A point sliding 1 cm over a triangle 1 µm above it: the distance never changes, so the
+  // whole motion is safe, but each iteration advances by at most 0.9 gap / l_p: about 10⁴
+  // iterations reach t = 1. Capped at 1000 the step ends at ~900 gaps of motion, still safe.
+  const Vec12 x = stencil(Vec3(0.2, 0.2, 1e-6), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  const Vec3 slide(0.01, 0, 0), zero = Vec3::Zero();
+  const Vec12 dx = stencil(slide, zero, zero, zero);
+  EXPECT_EQ(additive_ccd_point_triangle(x, dx, 0.0, kS, 1.0), 1.0);  // default cap 10⁶
+  const double t = additive_ccd_point_triangle(x, dx, 0.0, kS, 1.0, 1000);
+  const double l_p = 0.75 * 0.01 + 0.25 * 0.01;       // centred: ‖dp‖ + max_k ‖dt_k‖
+  EXPECT_NEAR(t, 1000 * 0.9 * 1e-6 / l_p, 0.02 * t);  // ~900 gaps of motion (0.09 here)
+  EXPECT_GT(min_distance_until(x, dx, true, t, 1000), 0.0);
+}

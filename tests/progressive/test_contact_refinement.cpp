@@ -204,3 +204,29 @@ TEST(SafeRefinement, RefusesBadArguments) {
   c.around.vertex_offset.pop_back();
   EXPECT_THROW(safe_refinement(h, 0, c.coarse, c.target, c.around), Error);
 }
+
+TEST(SafeRefinement, KeepsNewVerticesAboveTheGroundWhenTheirTargetsAreBelowIt) {
+  // The dome's coarse rim 15 µm above the ground (offset 50 µm: within it, as a drape pressed
+  // on the floor leaves it after fit_offsets) and the new vertices' targets 5 mm below their
+  // prolonged places, as a prolongation can put them under the floor: 1 % of a target edge
+  // then points 50 µm down, and a new vertex moved by it off a rim partner went under the
+  // ground, where it is 0 m from it and no offset can be fitted (issue 28 point 2).
+  Scene scene = dome_under_lid();
+  scene.obstacles[0].mesh.vertices.col(2).array() += 1.0;  // the lid far above
+  RefinementCase c = previewed(scene);
+  const MeshHierarchy& h = c.psq->hierarchy();
+  GroundPlane ground;
+  ground.normal = Vec3::UnitZ();
+  ground.height = c.coarse.col(2).minCoeff() - 1.5e-5;
+  c.around.ground = ground;
+  std::vector<char> coarse_vertex(h.levels[1].rest.num_vertices(), 0);
+  const std::vector<int> fine_index = level_vertex_index(h, 1);
+  for (int id : h.levels[0].input_vertex) coarse_vertex[fine_index[id]] = 1;
+  for (Eigen::Index v = 0; v < c.target.rows(); ++v)
+    if (!coarse_vertex[v]) c.target(v, 2) -= 5e-3;
+  SafeRefinementStats stats;
+  const Positions x = safe_refinement(h, 0, c.coarse, c.target, c.around, {}, &stats);
+  EXPECT_GT(x.col(2).minCoeff(), ground.height);  // every vertex above the ground
+  EXPECT_GT(stats.stopped_vertices, 0);           // the ground stopped some on their way
+  EXPECT_TRUE(intersecting_faces(x, scene.bodies[0].mesh.faces, 1).empty());  // CGAL
+}
