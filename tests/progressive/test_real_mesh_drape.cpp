@@ -7,7 +7,6 @@
 // bench_real_mesh_drape, not asserted. Needs the CGAL meshes (scripts/fetch_test_meshes.sh).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -15,20 +14,13 @@
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
 #include "sim/direct_simulation.hpp"
+#include "support/real_meshes.hpp"
 
 using namespace progsim;
+using namespace progsim::test_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-/// The CGAL data set's meshes, found as tests/mesh/test_real_meshes.cpp finds them.
-fs::path mesh_folder() {
-  const char* cache = std::getenv("PROGSIM_MESH_CACHE");
-  const char* home = std::getenv("HOME");
-  const fs::path root =
-      cache && *cache ? fs::path(cache) : fs::path(home ? home : "") / ".cache/progsim/meshes";
-  return root / "meshes";
-}
 
 /// The cap (0.3 m across, its open rim down) held by the 7 vertices of its flat top within
 /// 3 cm of the axis; the sphere 1 cm under the top's inside; the ground 3 mm under the rim.
@@ -56,7 +48,7 @@ const char* const kMushroomDrape = R"({
 }  // namespace
 
 TEST(RealMeshDrape, MushroomCapOverASphereRunsToTheConvergedFinestLevel) {
-  const fs::path folder = mesh_folder();
+  const fs::path folder = real_mesh_folder();
   ASSERT_TRUE(fs::is_regular_file(folder / "mushroom.off"))
       << folder << " has no mushroom.off: run scripts/fetch_test_meshes.sh (set "
       << "PROGSIM_MESH_CACHE to use another cache folder)";
