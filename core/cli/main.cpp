@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
   app.footer(
       "Exit status: 0 success; 2 bad input (a malformed scene or mesh), nothing "
       "written; 3 the simulation failed (a non-finite solve, an error after the start) or did "
-      "not converge (the finest level, or a direct run's last step): summary.json says which "
+      "not converge (the finest level, or a direct run's last step); 130 the run was cancelled "
+      "(Ctrl-C / SIGINT, at the next load step, settle or refinement): summary.json says which "
       "and why.");
   cli::RunCommand run_options;
   CLI::App* run_cmd = cli::add_run_command(app, run_options);

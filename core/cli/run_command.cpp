@@ -1,5 +1,6 @@
 #include "cli/run_command.hpp"
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -37,8 +38,20 @@ std::ofstream open_log(const fs::path& dir) {
   return log;
 }
 
-/// How a run ended: summary.json's "status" ("ok", "not_converged", "failed"), "message"
-/// and the last step (and, progressive, level) that ended well.
+/// Set by SIGINT during a run; the run stops at its next load step, settle or refinement.
+volatile std::sig_atomic_t g_interrupted = 0;
+
+void on_interrupt(int) {
+  g_interrupted = 1;
+}
+
+/// Throws Error(cancelled) once SIGINT has arrived.
+void stop_if_interrupted() {
+  if (g_interrupted) fail(Status::cancelled, "interrupted (SIGINT)");
+}
+
+/// How a run ended: summary.json's "status" ("ok", "not_converged", "failed", "cancelled"),
+/// "message" and the last step (and, progressive, level) that ended well.
 struct Outcome {
   std::string status = "ok";
   std::string message;
@@ -49,6 +62,11 @@ struct Outcome {
   void fail(const std::string& why) {
     status = "failed";
     message = why;
+  }
+  /// A failure from an Error thrown `where`: "cancelled" for Error(cancelled), else "failed".
+  void fail(const std::string& where, const Error& e) {
+    fail(where + ": " + status_name(e.status()) + ": " + e.what());
+    if (e.status() == Status::cancelled) status = "cancelled";
   }
 };
 
@@ -66,6 +84,10 @@ std::optional<std::string> solve_failure(const StepRecord& record, const Positio
 /// "failed: …" or "not_converged: …" on stderr, and the exit status of a run.
 int finish(const Outcome& outcome) {
   if (outcome.ok()) return 0;
+  if (outcome.status == "cancelled") {
+    std::fprintf(stderr, "progsim: the run was cancelled: %s\n", outcome.message.c_str());
+    return kCancelled;
+  }
   std::fprintf(stderr, "progsim: the simulation %s: %s\n",
                outcome.status == "failed" ? "failed" : "did not converge", outcome.message.c_str());
   return kSimulationFailed;
@@ -101,6 +123,7 @@ void write_nonempty(const std::string& path, const TriangleMesh& mesh) {
 
 int run_direct(Scene scene, const RunCommand& opt) {
   DirectSimulation sim(std::move(scene));
+  sim.set_interrupt([] { return g_interrupted != 0; });  // a long solve stops at its iterate
   const int steps = opt.steps > 0 ? opt.steps : sim.scene().num_steps();
   const fs::path dir(opt.out_dir);
   std::ofstream log = open_log(dir);
@@ -117,6 +140,7 @@ int run_direct(Scene scene, const RunCommand& opt) {
   try {
     write_frame(0);
     for (step = 1; step <= steps; ++step) {
+      stop_if_interrupted();
       last = sim.step();
       log << to_json_line(*last) << "\n";
       summary.add(*last);
@@ -129,7 +153,7 @@ int run_direct(Scene scene, const RunCommand& opt) {
       if (!opt.quiet) bar.update(step);
     }
   } catch (const Error& e) {
-    outcome.fail("step " + std::to_string(step) + ": " + status_name(e.status()) + ": " + e.what());
+    outcome.fail("step " + std::to_string(step), e);
   }
   if (!opt.quiet) bar.finish();
   if (outcome.ok() && last && last->newton.stop != NewtonStop::converged) {
@@ -243,6 +267,7 @@ int run_progressive(Scene scene, const RunCommand& opt) {
     write_frame(0);
     for (int k = 1; k <= steps; ++k) {
       where = "load step " + std::to_string(k) + " (preview on level 0)";
+      stop_if_interrupted();
       const StepRecord record = psq.step();
       log << tagged_line(record, 0, "step") << "\n";
       if (const auto why = solve_failure(record, psq.current().positions()))
@@ -254,6 +279,7 @@ int run_progressive(Scene scene, const RunCommand& opt) {
     for (int level = 0;; ++level) {
       where = "settling level " + std::to_string(level);
       for (int k = 0; k < opt.max_settles && !psq.records()[level].equilibrium; ++k) {
+        stop_if_interrupted();
         const StepRecord record = psq.settle();
         log << tagged_line(record, level, "settle") << "\n";
         if (const auto why = solve_failure(record, psq.current().positions()))
@@ -268,6 +294,7 @@ int run_progressive(Scene scene, const RunCommand& opt) {
       if (!opt.quiet) bar.update(steps + level + 1);
       if (level == finest || opt.preview_only) break;
       where = "refining level " + std::to_string(level) + " into " + std::to_string(level + 1);
+      stop_if_interrupted();
       psq.refine();
     }
     const int last_level = opt.preview_only ? 0 : finest;  // the level the run ends on
@@ -286,7 +313,7 @@ int run_progressive(Scene scene, const RunCommand& opt) {
                         " solved, the finer levels not";
     }
   } catch (const Error& e) {
-    outcome.fail(where + ": " + status_name(e.status()) + ": " + e.what());
+    outcome.fail(where, e);
   }
   if (!opt.quiet) bar.finish();
   const nlohmann::json rows = level_rows(psq, crossings);
@@ -359,6 +386,7 @@ int run_run_command(const RunCommand& options) {
   if (options.preview_only && !(progressive && !options.direct))
     fail(Status::invalid_argument, "--preview-only needs a progressive run: " + scene.name +
                                        " has no coarse levels, is dynamic, or --direct was given");
+  std::signal(SIGINT, on_interrupt);  // Ctrl-C: a "cancelled" summary, not a torn folder
   if (progressive && !options.direct) return run_progressive(std::move(scene), options);
   return run_direct(std::move(scene), options);
 }

@@ -12,6 +12,10 @@ namespace progsim::cli {
 /// step); 2 is bad input, refused before anything is written.
 constexpr int kSimulationFailed = 3;
 
+/// Exit status of a run cancelled by SIGINT (Ctrl-C; 128 + 2, as shells report it): it stops
+/// at the next load step, settle or refinement, and summary.json says "cancelled".
+constexpr int kCancelled = 130;
+
 /// Options of `progsim run SCENE --out DIR [--steps N] [--max-settles N] [--direct]
 /// [--preview-only] [--quiet]`.
 struct RunCommand {
@@ -35,9 +39,9 @@ CLI::App* add_run_command(CLI::App& app, RunCommand& options);
 /// summary.json; prints the summary. Everything is
 /// loaded and validated before the folder is touched. Throws progsim::Error on bad input.
 /// Once the run has started, a failure stops it: summary.json, always the last file written,
-/// records the outcome ("status": "ok", "not_converged" or "failed", "message",
+/// records the outcome ("status": "ok", "not_converged", "failed" or "cancelled", "message",
 /// "last_good_step", progressive "last_good_level"). Returns 0 when the run ended "ok",
-/// kSimulationFailed otherwise (and says why on stderr).
+/// kCancelled after SIGINT, kSimulationFailed otherwise (and says why on stderr).
 int run_run_command(const RunCommand& options);
 
 }  // namespace progsim::cli

@@ -4,7 +4,10 @@
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -19,6 +22,7 @@
 #include "mesh/mesh_io.hpp"
 
 namespace fs = std::filesystem;
+extern char** environ;  // the environment a spawned progsim inherits
 
 namespace {
 
@@ -519,4 +523,51 @@ TEST_F(Cli, EveryPathRefusesACrossingInputUnlessTheSceneOptsIn) {
   EXPECT_EQ(summary["status"], "ok");
   EXPECT_GT(summary["input_crossing_face_pairs"].get<int>(), 0);
   for (const auto& level : summary["levels"]) EXPECT_EQ(level["crossing_face_pairs"], 0) << level;
+}
+
+namespace {
+
+/// Runs `progsim run SCENE --out OUT --quiet [extra]`, sends it SIGINT once steps.jsonl has a
+/// line (within 120 s), and returns its exit status (−1 if it never got that far).
+int run_then_interrupt(const std::string& scene, const fs::path& out, const char* extra) {
+  const std::string cli = PROGSIM_CLI_PATH, out_dir = out.string();
+  std::vector<const char*> args = {cli.c_str(), "run",           scene.c_str(),
+                                   "--out",     out_dir.c_str(), "--quiet"};
+  if (extra) args.push_back(extra);
+  args.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, cli.c_str(), nullptr, nullptr, const_cast<char* const*>(args.data()),
+                  environ) != 0)
+    return -1;
+  const auto has_a_line = [&] {
+    std::error_code error;
+    return fs::file_size(out / "steps.jsonl", error) > 0 && !error;
+  };
+  for (int k = 0; k < 1200 && !has_a_line(); ++k) usleep(100000);
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+// Ctrl-C during a run (issue 28: a cancel has its exit status and summary status): it stops at
+// the next load step, settle or refinement, exits 130 and leaves a "cancelled" summary, last.
+TEST_F(Cli, AnInterruptedRunExits130WithACancelledSummaryLast) {
+  const std::pair<std::string, const char*> runs[] = {
+      {source_scene("psq_twist"), nullptr},          // progressive: 20 load steps, 3 levels
+      {source_scene("twisted_cloth"), "--direct"}};  // direct: a two-turn contact twist
+  for (const auto& [scene, extra] : runs) {
+    SCOPED_TRACE(scene);
+    const fs::path out = dir_ / fs::path(scene).stem();
+    ASSERT_EQ(run_then_interrupt(scene, out, extra), 130);
+    const auto summary = read_summary(out);
+    EXPECT_EQ(summary.at("status"), "cancelled");
+    EXPECT_NE(summary.at("message").get<std::string>().find("interrupted (SIGINT)"),
+              std::string::npos);
+    const auto summary_time = fs::last_write_time(out / "summary.json");
+    for (const auto& entry : fs::directory_iterator(out))
+      EXPECT_LE(entry.last_write_time(), summary_time) << entry.path();
+  }
 }
