@@ -3,7 +3,10 @@
 #include <cstdio>
 
 #include "cli/progress_bar.hpp"
+#include "cli/run_command.hpp"
+#include "common/error.hpp"
 #include "progressive/accuracy.hpp"
+#include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
 
 namespace progsim::cli {
@@ -32,14 +35,43 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommand& options) {
   return cmd;
 }
 
+namespace {
+
+/// Whether the progressive finest row converged (the truth every error is measured against).
+bool finest_converged(const AccuracyReport& report) {
+  const AccuracyRow* finest = nullptr;
+  for (const AccuracyRow& row : report.rows)
+    if (row.method == AccuracyRow::Method::progressive && (!finest || row.level > finest->level))
+      finest = &row;
+  return finest && finest->converged;
+}
+
+/// Errors that say the request itself was bad (exit status 2, as before the run started).
+bool bad_input(Status status) {
+  return status == Status::invalid_scene || status == Status::invalid_argument ||
+         status == Status::invalid_mesh;
+}
+
+}  // namespace
+
 int run_accuracy_command(const AccuracyCommand& options) {
   const Scene scene = load_scene_file(options.scene_path);
+  check_progressive_scene(scene);  // bad input (status 2) is refused before any work
   const DirectSolves direct{
       options.direct_levels, options.direct_time_ratio,
       options.of_preview ? DirectSolves::TimeBase::preview : DirectSolves::TimeBase::pipeline};
   ProgressBar bar("accuracy", 100);
-  const AccuracyReport report = run_accuracy(scene, options.max_settles,
-                                             options.quiet ? nullptr : draw_percent, &bar, direct);
+  AccuracyReport report;
+  try {
+    report = run_accuracy(scene, options.max_settles, options.quiet ? nullptr : draw_percent, &bar,
+                          direct);
+  } catch (const Error& e) {  // after the start: a failed run, nothing written
+    if (bad_input(e.status())) throw;
+    if (!options.quiet) bar.finish();
+    std::fprintf(stderr, "progsim: the accuracy run failed: %s: %s\n", status_name(e.status()),
+                 e.what());
+    return e.status() == Status::cancelled ? kCancelled : kSimulationFailed;
+  }
   if (!options.quiet) bar.finish();
   write_accuracy_report(report, options.out_dir);
   std::printf("%s", accuracy_markdown(report).c_str());
@@ -47,7 +79,12 @@ int run_accuracy_command(const AccuracyCommand& options) {
       "results: %s (accuracy.csv, accuracy.md, error_vs_time.png, error_by_level.png, "
       "time_by_level.png)\n",
       options.out_dir.c_str());
-  return 0;
+  if (finest_converged(report)) return 0;
+  std::fprintf(stderr,
+               "progsim: the accuracy run did not converge: the finest level is not at "
+               "equilibrium, so its errors are not measured against a converged result "
+               "(--max-settles raises the limit)\n");
+  return kSimulationFailed;
 }
 
 }  // namespace progsim::cli

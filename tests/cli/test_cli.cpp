@@ -571,3 +571,18 @@ TEST_F(Cli, AnInterruptedRunExits130WithACancelledSummaryLast) {
       EXPECT_LE(entry.last_write_time(), summary_time) << entry.path();
   }
 }
+
+// progsim accuracy follows run's exit statuses: a finest level short of equilibrium exits 3
+// (the report is still written, its rows marked unconverged), bad input 2 before any work.
+TEST_F(Cli, AccuracyWhoseFinestLevelDoesNotConvergeExits3) {
+  std::ifstream in(source_scene("psq_plate_buckling"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find(R"("effects")"), 9,
+               R"("solver": {"max_newton_iterations": 2}, "effects")");
+  const fs::path out = dir_ / "plate";
+  const CommandResult r = run_cli("accuracy " + write("plate.json", text).string() + " --out " +
+                                  out.string() + " --quiet --max-settles 1 --direct-levels 0");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("the accuracy run did not converge"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "accuracy.csv"));
+}
