@@ -294,6 +294,27 @@ std::string source_scene(const std::string& name) {
   return std::string(PROGSIM_SOURCE_DIR) + "/scenes/" + name + ".json";
 }
 
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// The bundled buckling plate with two Newton iterations per solve: its finest level's solve
+/// after refinement stops at the cap, short of equilibrium, with one settle per level.
+std::string plate_with_two_iterations() {
+  std::string text = read_text(source_scene("psq_plate_buckling"));
+  text.replace(text.find(R"("effects")"), 9,
+               R"("solver": {"max_newton_iterations": 2}, "effects")");
+  return text;
+}
+
+/// No file in `out` is newer than its summary.json.
+void expect_summary_written_last(const fs::path& out) {
+  const auto summary_time = fs::last_write_time(out / "summary.json");
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_LE(entry.last_write_time(), summary_time) << entry.path();
+}
+
 }  // namespace
 
 TEST_F(Cli, RunWithANonFiniteStepFailsExits3AndStopsThere) {
@@ -333,8 +354,7 @@ TEST_F(Cli, RunRefusesAFreeQuasistaticBodyUpFront) {
 
 TEST_F(Cli, DirectRunWhoseLastStepDoesNotConvergeExits3) {
   // The hanging cloth solved quasistatically with one Newton iteration per step.
-  std::ifstream in(source_scene("hanging_cloth"));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text = read_text(source_scene("hanging_cloth"));
   text.replace(text.find(R"("mode": "dynamic")"), 17, R"("mode": "quasistatic")");
   text.replace(text.find(R"("max_newton_iterations": 50)"), 27, R"("max_newton_iterations": 1)");
   const fs::path scene = write("cloth.json", text);
@@ -352,12 +372,7 @@ TEST_F(Cli, DirectRunWhoseLastStepDoesNotConvergeExits3) {
 }
 
 TEST_F(Cli, ProgressiveRunWhoseFinestLevelDoesNotConvergeExits3) {
-  // The buckling plate with two Newton iterations per solve and one settle per level: the
-  // finest level's solve after refinement stops at the cap, short of equilibrium.
-  std::ifstream in(source_scene("psq_plate_buckling"));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text.replace(text.find(R"("effects")"), 9,
-               R"("solver": {"max_newton_iterations": 2}, "effects")");
+  const std::string text = plate_with_two_iterations();
   const fs::path out = dir_ / "plate";
   const CommandResult r = run_cli("run " + write("plate.json", text).string() + " --out " +
                                   out.string() + " --quiet --steps 2 --max-settles 1");
@@ -392,9 +407,7 @@ TEST_F(Cli, ProgressiveRunFailingAfterItsStartLeavesAFailedSummaryLast) {
   EXPECT_EQ(summary.at("last_good_level").get<int>(), 0);
   EXPECT_EQ(summary.at("levels").size(), 1u);  // the levels finished: level 0
   EXPECT_FALSE(fs::exists(out / "level_2.obj"));
-  const auto summary_time = fs::last_write_time(out / "summary.json");
-  for (const auto& entry : fs::directory_iterator(out))
-    EXPECT_LE(entry.last_write_time(), summary_time) << entry.path();
+  expect_summary_written_last(out);
 }
 
 namespace {
@@ -507,8 +520,7 @@ TEST_F(Cli, EveryPathRefusesACrossingInputUnlessTheSceneOptsIn) {
         << command << ": " << r.output;
     EXPECT_FALSE(fs::exists(out)) << command << " wrote " << out;
   }
-  std::ifstream in(scene);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text = read_text(scene);
   const std::string dhat = R"("contact": {"dhat": 1e-3})";
   ASSERT_NE(text.find(dhat), std::string::npos);
   text.replace(text.find(dhat), dhat.size(), R"("contact": {"dhat": 1e-3, "crossing_start": 1})");
@@ -566,19 +578,14 @@ TEST_F(Cli, AnInterruptedRunExits130WithACancelledSummaryLast) {
     EXPECT_EQ(summary.at("status"), "cancelled");
     EXPECT_NE(summary.at("message").get<std::string>().find("interrupted (SIGINT)"),
               std::string::npos);
-    const auto summary_time = fs::last_write_time(out / "summary.json");
-    for (const auto& entry : fs::directory_iterator(out))
-      EXPECT_LE(entry.last_write_time(), summary_time) << entry.path();
+    expect_summary_written_last(out);
   }
 }
 
 // progsim accuracy follows run's exit statuses: a finest level short of equilibrium exits 3
 // (the report is still written, its rows marked unconverged), bad input 2 before any work.
 TEST_F(Cli, AccuracyWhoseFinestLevelDoesNotConvergeExits3) {
-  std::ifstream in(source_scene("psq_plate_buckling"));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  text.replace(text.find(R"("effects")"), 9,
-               R"("solver": {"max_newton_iterations": 2}, "effects")");
+  const std::string text = plate_with_two_iterations();
   const fs::path out = dir_ / "plate";
   const CommandResult r = run_cli("accuracy " + write("plate.json", text).string() + " --out " +
                                   out.string() + " --quiet --max-settles 1 --direct-levels 0");
