@@ -24,7 +24,7 @@
 #include "energy/tension_field_membrane.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 using namespace progsim;
 
@@ -117,9 +117,9 @@ int run(int argc, char** argv) {
   const ShellMaterial& material = scene.bodies[0].material;
   const double area = total_area(hierarchy->levels[finest].rest);
   ProgressiveSimulation psq(scene, hierarchy);
-  std::vector<std::unique_ptr<DirectSimulation>> levels;
+  std::vector<std::unique_ptr<LevelSimulation>> levels;
   for (int l = 0; l <= finest; ++l)
-    levels.push_back(std::make_unique<DirectSimulation>(scene, SimulationLevel{hierarchy, l, {}}));
+    levels.push_back(std::make_unique<LevelSimulation>(scene, SimulationLevel{hierarchy, l, {}}));
   const Problem& fine_problem = levels[finest]->problem();
   const ShellModel& fine_model = levels[finest]->model();
   const TensionFieldMembrane relaxed(fine_model.rest.vertices, fine_model.rest.faces,

@@ -14,7 +14,7 @@
 #include "common/constants.hpp"
 #include "contact/contact_potential.hpp"
 #include "mesh/mesh_generators.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 using namespace progsim;
 
@@ -94,7 +94,7 @@ int run(int argc, char** argv) {
   const int n = argc > 2 ? std::atoi(argv[2]) : 100;
   const int steps = argc > 3 ? std::atoi(argv[3]) : 50;
 
-  DirectSimulation with_contact(cloth_over_sphere(n, steps, true));
+  LevelSimulation with_contact(cloth_over_sphere(n, steps, true));
   std::printf("cloth %d vertices + sphere %d vertices, %d steps of h = 0.01 s\n",
               with_contact.model().rest.num_vertices(),
               with_contact.contact()->mesh().num_obstacle_vertices, steps);
@@ -112,7 +112,7 @@ int run(int argc, char** argv) {
 
   // The same scene without contact, for the steps before the cloth touches (then the two
   // runs are identical motions, so the time difference is what contact checking costs).
-  DirectSimulation without_contact(cloth_over_sphere(n, steps, false));
+  LevelSimulation without_contact(cloth_over_sphere(n, steps, false));
   Split free_fall, falling_with_contact, touching, all;
   for (int s = 0; s < first_touch; ++s) {
     free_fall.add(split_of(without_contact.step()));

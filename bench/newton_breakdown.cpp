@@ -12,7 +12,7 @@
 
 #include "bench_main.hpp"
 #include "mesh/mesh_generators.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 using namespace progsim;
 
@@ -41,7 +41,7 @@ Scene hanging_cloth(int n) {
 
 Row measure(int n, int threads, int steps) {
   omp_set_num_threads(threads);
-  DirectSimulation sim(hanging_cloth(n));
+  LevelSimulation sim(hanging_cloth(n));
   Row row{sim.model().rest.num_vertices(), threads, 0, {}, 0.0};
   for (int s = 0; s < steps; ++s) {
     const StepRecord r = sim.step();

@@ -17,7 +17,7 @@
 #include "bench_main.hpp"
 #include "common/timer.hpp"
 #include "scaled_scene.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 using namespace progsim;
 
@@ -48,7 +48,7 @@ Run solve_directly(Scene scene, const Variant& variant) {
   scene.solver.max_cg_iterations = variant.max_cg_iterations;
   Run run;
   Timer timer;
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   for (int s = 0; s < scene.num_steps(); ++s) {
     const StepRecord r = sim.step();
     run.iterations += r.newton.iterations;

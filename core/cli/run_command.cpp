@@ -17,7 +17,7 @@
 #include "mesh/mesh_io.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 #include "sim/run_summary.hpp"
 
 namespace fs = std::filesystem;
@@ -106,7 +106,7 @@ std::string outcome_line(const Outcome& outcome) {
 
 /// The obstacles as `sim`'s contact meets them now: their positions (a progressive level's
 /// coarse copies, where its script rounds left them) and faces; empty without any.
-TriangleMesh met_obstacles(const DirectSimulation& sim) {
+TriangleMesh met_obstacles(const LevelSimulation& sim) {
   const ContactPotential* contact = sim.contact();
   if (!contact || contact->mesh().num_obstacle_vertices == 0) return {};
   const CollisionMesh& mesh = contact->mesh();
@@ -122,7 +122,7 @@ void write_nonempty(const std::string& path, const TriangleMesh& mesh) {
 }
 
 int run_direct(Scene scene, const RunCommand& opt) {
-  DirectSimulation sim(std::move(scene));
+  LevelSimulation sim(std::move(scene));
   sim.set_interrupt([] { return g_interrupted != 0; });  // a long solve stops at its iterate
   const int steps = opt.steps > 0 ? opt.steps : sim.scene().num_steps();
   const fs::path dir(opt.out_dir);

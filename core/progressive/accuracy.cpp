@@ -59,7 +59,7 @@ AccuracyRow direct_row(const Scene& scene, const ProgressiveSimulation& psq, int
   row.method = Method::direct;
   row.level = level;
   Timer timer;
-  DirectSimulation sim(scene, SimulationLevel{psq.shared_hierarchy(), level, {}});
+  LevelSimulation sim(scene, SimulationLevel{psq.shared_hierarchy(), level, {}});
   if (time_limit > 0.0) sim.set_interrupt([&] { return timer.seconds() > time_limit; });
   StepRecord last;
   const auto stopped = [&] { return last.newton.stop == NewtonStop::interrupted; };

@@ -122,11 +122,11 @@ Scene ProgressiveSimulation::level_scene(int level) const {
   return scene;
 }
 
-std::unique_ptr<DirectSimulation> ProgressiveSimulation::make_level(int level,
+std::unique_ptr<LevelSimulation> ProgressiveSimulation::make_level(int level,
                                                                     LevelStart start) const {
   SimulationLevel spec{hierarchy_, level, {}};
   if (level < finest()) spec.to_finest = to_finest(level);
-  return std::make_unique<DirectSimulation>(level_scene(level), std::move(spec), std::move(start));
+  return std::make_unique<LevelSimulation>(level_scene(level), std::move(spec), std::move(start));
 }
 
 void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
@@ -236,7 +236,7 @@ void ProgressiveSimulation::refine() {
   SafeRefinementStats refinement, obstacle_refinement;
   StrainCorrectionStats strain_correction;
   Vector start = as_dofs(target);
-  std::unique_ptr<DirectSimulation> next;
+  std::unique_ptr<LevelSimulation> next;
   try {
     const ContactPotential* contact = sim_->contact();
     Positions obstacles = sim_->obstacle_positions();

@@ -13,7 +13,7 @@
 #include "progressive/state_distance.hpp"
 #include "progressive/strain_correction.hpp"
 #include "scene/scene.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 namespace progsim {
 
@@ -96,7 +96,7 @@ class ProgressiveSimulation {
   const MeshHierarchy& hierarchy() const { return *hierarchy_; }
   std::shared_ptr<const MeshHierarchy> shared_hierarchy() const { return hierarchy_; }
   /// The simulation of the current level.
-  const DirectSimulation& current() const { return *sim_; }
+  const LevelSimulation& current() const { return *sim_; }
   const std::vector<LevelRecord>& records() const { return records_; }
   const Scene& scene() const { return scene_; }
   /// Crossing face pairs of the finest rest shape among the obstacles at t = 0 (CGAL exact):
@@ -125,7 +125,7 @@ class ProgressiveSimulation {
   /// The scene a level is solved with: the preview iteration cap below the finest level.
   Scene level_scene(int level) const;
   /// A new simulation of `level` from `start`.
-  std::unique_ptr<DirectSimulation> make_level(int level, LevelStart start) const;
+  std::unique_ptr<LevelSimulation> make_level(int level, LevelStart start) const;
   /// P_{level+1}^level (PSQ eq. 7) and P^level (eq. 9), built once.
   const std::shared_ptr<const ShellProlongation>& next_operator(int level) const;
   const std::shared_ptr<const ShellProlongation>& direct_operator(int level) const;
@@ -154,7 +154,7 @@ class ProgressiveSimulation {
   std::unique_ptr<const ObstacleHierarchy> obstacle_levels_;  // null: no progressive obstacle
   mutable std::vector<std::shared_ptr<const ShellProlongation>> to_finest_;  // lazily built
   mutable std::vector<std::shared_ptr<const ShellProlongation>> to_next_;    // lazily built
-  std::unique_ptr<DirectSimulation> sim_;
+  std::unique_ptr<LevelSimulation> sim_;
   std::vector<LevelRecord> records_;
   int level_ = 0;
   int input_crossing_pairs_ = 0;

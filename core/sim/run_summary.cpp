@@ -19,7 +19,7 @@ void RunSummary::add(const StepRecord& r) {
   ++stops_[stop_name(r.newton.stop)];
 }
 
-std::string RunSummary::to_json(const DirectSimulation& sim) const {
+std::string RunSummary::to_json(const LevelSimulation& sim) const {
   nlohmann::json terms = nlohmann::json::array();
   for (const TermStats& t : sim.term_totals())
     terms.push_back({{"name", t.name},
@@ -50,7 +50,7 @@ std::string RunSummary::to_json(const DirectSimulation& sim) const {
   return j.dump(2);
 }
 
-std::string RunSummary::to_text(const DirectSimulation& sim) const {
+std::string RunSummary::to_text(const LevelSimulation& sim) const {
   std::string out;
   char line[256];
   std::snprintf(line, sizeof line, "scene %s: %d vertices, %d faces, %d steps, %.3f s simulated\n",

@@ -3,7 +3,7 @@
 #include <map>
 #include <string>
 
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 #include "sim/step_record.hpp"
 
 namespace progsim {
@@ -19,9 +19,9 @@ class RunSummary {
   const std::map<std::string, int>& stops() const { return stops_; }
 
   /// Scene, effects, totals, per-phase and per-term time (sim gives the term totals).
-  std::string to_json(const DirectSimulation& sim) const;
+  std::string to_json(const LevelSimulation& sim) const;
   /// The same as a short human-readable table.
-  std::string to_text(const DirectSimulation& sim) const;
+  std::string to_text(const LevelSimulation& sim) const;
 
  private:
   int steps_ = 0;

@@ -16,7 +16,7 @@
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "mesh/mesh_topology.hpp"
-#include "progressive/prolonged_elastics.hpp"
+#include "energy/prolonged_elastics.hpp"
 
 extern "C" {
 void* __libc_malloc(std::size_t size);

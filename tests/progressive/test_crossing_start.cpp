@@ -7,7 +7,7 @@
 #include "mesh/intersection_check.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 #include "sim/shell_model.hpp"
 #include "support/expect_error.hpp"
 
@@ -47,7 +47,7 @@ TEST(CrossingStart, AProgressiveRunIsRefusedBeforeBuildingAnything) {
 TEST(CrossingStart, ADirectRunIsRefusedEvenWithTheOptIn) {
   Scene scene = crossing_flap();
   scene.contact.crossing_start = true;
-  expect_error([&] { DirectSimulation sim(scene); }, Status::intersecting,
+  expect_error([&] { LevelSimulation sim(scene); }, Status::intersecting,
                {"crossing_flap: the start intersects: shell face "});
 }
 

@@ -40,7 +40,7 @@ TEST_P(ProxyProlongations, RefinedToTheFinestLevelItReachesTheDirectSolution) {
     psq.refine();
     ASSERT_TRUE(psq.settle_to_equilibrium(300)) << "level " << psq.level();
   }
-  DirectSimulation direct(scene);
+  LevelSimulation direct(scene);
   direct.step();
   const Positions& rest = scene.bodies[0].mesh.vertices;
   const double sag = relative_distance(direct.positions(), rest, rest).second;
@@ -116,11 +116,11 @@ TEST(ProgressiveSimulation, PlateBucklesTheSameWayOnEveryLevel) {
     ASSERT_TRUE(psq.settle_to_equilibrium(300));
     EXPECT_GT(psq.positions(psq.finest())(centre, 2), 0.05) << "level " << psq.level();
   }
-  DirectSimulation direct(scene);
+  LevelSimulation direct(scene);
   for (int s = 0; s < scene.num_steps(); ++s) direct.step();
   EXPECT_GT(direct.positions()(centre, 2), 0.05) << "direct finest";
   // Consistency (measured: preview max 0.61% of the diagonal, direct coarse 0.85%).
-  DirectSimulation coarse(progressive, SimulationLevel{psq.shared_hierarchy(), 0, {}});
+  LevelSimulation coarse(progressive, SimulationLevel{psq.shared_hierarchy(), 0, {}});
   for (int s = 0; s < scene.num_steps(); ++s) coarse.step();
   const Positions& rest = scene.bodies[0].mesh.vertices;
   const Positions finest = psq.positions(psq.finest());

@@ -15,7 +15,7 @@
 #include "progressive/progressive_simulation.hpp"
 #include "progressive/state_distance.hpp"
 #include "scene/scene_json.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 #include "support/energy_checks.hpp"
 
 using namespace progsim;
@@ -78,7 +78,7 @@ void expect_previews_closer_than_direct_coarse_solves(const AccuracyReport& repo
 }
 
 /// The names of the terms `sim` evaluates, the proxy's finest ones as "<term>@finest".
-std::vector<std::string> term_names(const DirectSimulation& sim) {
+std::vector<std::string> term_names(const LevelSimulation& sim) {
   std::vector<std::string> names;
   for (const TermStats& t : sim.term_totals()) names.push_back(t.name);
   return names;
@@ -134,7 +134,7 @@ struct DirectRun {
 
 /// The scene solved directly over its first `steps` steps.
 static DirectRun solve_directly(const Scene& scene, int steps) {
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   DirectRun run;
   for (int s = 0; s < steps; ++s) {
     const StepRecord r = sim.step();
@@ -195,7 +195,7 @@ TEST(PsqScenes, StiffThinCanPreviewDoesNotLockLikeTheDirectCoarseSolve) {
     psq.refine();
     ASSERT_TRUE(psq.settle_to_equilibrium(500)) << "level " << psq.level();
   }
-  DirectSimulation coarse(scene, SimulationLevel{psq.shared_hierarchy(), 0, {}});
+  LevelSimulation coarse(scene, SimulationLevel{psq.shared_hierarchy(), 0, {}});
   StepRecord last;
   for (int s = 0; s < scene.num_steps(); ++s) last = coarse.step();
   for (int k = 0; k < 500 && !last.equilibrium; ++k) last = coarse.settle();
@@ -244,7 +244,7 @@ TEST(PsqScenes, ClothOnSpherePreviewsUseTheTensionFieldMembraneTheFinestLevelThe
     EXPECT_TRUE(has(term_names(psq.current()), "membrane"));
     EXPECT_FALSE(has(term_names(psq.current()), "tension_field_membrane"));
   }
-  const DirectSimulation coarse(
+  const LevelSimulation coarse(
       scene,
       SimulationLevel{std::make_shared<const MeshHierarchy>(build_scene_hierarchy(scene)), 0, {}});
   EXPECT_TRUE(has(term_names(coarse), "membrane"));

@@ -13,7 +13,7 @@
 #include "mesh/intersection_check.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 #include "support/real_meshes.hpp"
 
 using namespace progsim;

@@ -10,7 +10,7 @@
 #include "contact/contact_potential.hpp"
 #include "mesh/intersection_check.hpp"
 #include "mesh/mesh_generators.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 namespace progsim::contact_scenes {
 
@@ -60,7 +60,7 @@ inline Obstacle static_obstacle(const std::string& name, TriangleMesh mesh, doub
 
 /// Shell and obstacles at the simulation's current state: no two faces intersect, by CGAL's
 /// exact predicates (independent of progsim's distance and CCD code).
-inline void expect_intersection_free(const DirectSimulation& sim, int step) {
+inline void expect_intersection_free(const LevelSimulation& sim, int step) {
   const ContactPotential& contact = *sim.contact();
   Positions all(contact.mesh().num_vertices(), 3);
   all.topRows(contact.mesh().num_shell_vertices) = sim.positions();
@@ -72,7 +72,7 @@ inline void expect_intersection_free(const DirectSimulation& sim, int step) {
 
 /// Runs every step, checking after each that the state is finite and intersection-free.
 /// @return the records
-inline std::vector<StepRecord> run_checked(DirectSimulation& sim) {
+inline std::vector<StepRecord> run_checked(LevelSimulation& sim) {
   std::vector<StepRecord> records;
   for (int s = 0; s < sim.scene().num_steps(); ++s) {
     records.push_back(sim.step());
@@ -87,7 +87,7 @@ inline std::vector<StepRecord> run_checked(DirectSimulation& sim) {
 }
 
 /// Largest vertex speed (m/s).
-inline double max_speed(const DirectSimulation& sim) {
+inline double max_speed(const LevelSimulation& sim) {
   return as_positions(sim.velocities()).rowwise().norm().maxCoeff();
 }
 

@@ -15,7 +15,7 @@
 #include "mesh/mesh_topology.hpp"
 #include "problem/problem.hpp"
 #include "scene/scene_json.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 #include "solve/newton_solver.hpp"
 #include "support/end_moment_term.hpp"
 #include "support/energy_checks.hpp"
@@ -255,7 +255,7 @@ TEST(AnalyticShells, HangingClothReachesEquilibrium) {
   scene.duration = scene.time_step;  // one quasistatic solve
   scene.solver.tolerance = 1e-9;
   scene.solver.max_iterations = 500;
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   const StepRecord record = sim.step();
   EXPECT_EQ(record.newton.stop, NewtonStop::converged);
   Vector g;
@@ -281,7 +281,7 @@ TEST(AnalyticShells, WithTheProximalTermOnlyASolveThatDoesNotMoveIsAnEquilibrium
                 {"body": "cloth", "box": {"min": [0.99, 0.99, -0.01], "max": [1.01, 1.01, 0.01]}}],
     "progressive": {"proximal": true}})",
                             ".");
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   const StepRecord first = sim.step();
   ASSERT_EQ(first.newton.stop, NewtonStop::converged);
   EXPECT_FALSE(first.equilibrium) << "the first solve moved the cloth; gravity is not balanced";
@@ -296,7 +296,7 @@ TEST(AnalyticShells, WithTheProximalTermOnlyASolveThatDoesNotMoveIsAnEquilibrium
   const double weight = sim.model().vertex_masses.sum() * 9.81;
   EXPECT_LT(g.norm(), 1e-3 * weight) << "‖∇E‖ = " << g.norm() << " N, weight " << weight << " N";
   scene.progressive.proximal = false;
-  DirectSimulation direct(scene);
+  LevelSimulation direct(scene);
   ASSERT_TRUE(direct.step().equilibrium);
   const double distance = (direct.positions() - sim.positions()).rowwise().norm().maxCoeff();
   EXPECT_LT(distance, 1e-3) << "max vertex distance, m";
@@ -304,7 +304,7 @@ TEST(AnalyticShells, WithTheProximalTermOnlyASolveThatDoesNotMoveIsAnEquilibrium
 
 TEST(AnalyticShells, BalloonFollowsNeoHookeanPressureStretchCurve) {
   const Scene scene = load_scene_file(std::string(PROGSIM_SOURCE_DIR) + "/scenes/balloon.json");
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   for (int s = 0; s < scene.num_steps(); ++s)
     ASSERT_EQ(sim.step().newton.stop, NewtonStop::converged);
   const Body& body = scene.bodies[0];

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "scene/scene_json.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 using namespace progsim;
 
@@ -16,7 +16,7 @@ TEST(BundledScenes, EveryOneLoadsAndTakesAFiniteStep) {
     if (entry.path().extension() != ".json") continue;
     SCOPED_TRACE(entry.path().string());
     ++scenes;
-    DirectSimulation sim(load_scene_file(entry.path().string()));
+    LevelSimulation sim(load_scene_file(entry.path().string()));
     const StepRecord r = sim.step();
     EXPECT_TRUE(sim.dofs().allFinite());
     EXPECT_NE(r.newton.stop, NewtonStop::non_finite);

@@ -32,7 +32,7 @@ void report(const char* name, const std::vector<StepRecord>& records) {
 /// rest draped over it: the centre rests on the top (above it, nearly still) and the corners
 /// hang below it. The hanging flaps may still swing a little (implicit Euler damps them slowly).
 void expect_drapes(Scene scene, double top, double centre_speed) {
-  DirectSimulation sim(std::move(scene));
+  LevelSimulation sim(std::move(scene));
   const auto records = run_checked(sim);
   report(sim.scene().name.c_str(), records);
   const Positions p = sim.positions();
@@ -99,7 +99,7 @@ TEST(ContactScenes, ClothTwistedTwoTurnsStaysIntersectionFree) {
     h.motion.velocity = Vec3(end ? -0.1 : 0.1, 0.0, 0.0);
     scene.handles.push_back(h);
   }
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   const auto records = run_checked(sim);
   report("twist", records);
   ASSERT_EQ(records.size(), 80u);
@@ -116,7 +116,7 @@ TEST(ContactScenes, SpinningSphereDragsTheClothAroundByFriction) {
   sphere.motion.axis = Vec3::UnitY();
   sphere.motion.angular_velocity = 3.0;
   scene.obstacles.push_back(sphere);
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   const Positions start = sim.positions();
   const auto records = run_checked(sim);
   report("spinning_sphere", records);
@@ -143,7 +143,7 @@ TEST(ContactScenes, IntersectingStartIsRejectedNamingThePair) {
   Scene scene = cloth_scene(horizontal_cloth(0.8, 6, 0.0), 0.0, 0.01, 1);  // through the sphere
   scene.obstacles.push_back(static_obstacle("sphere", make_sphere(kRadius, 1), 0.0));
   try {
-    DirectSimulation sim(scene);
+    LevelSimulation sim(scene);
     FAIL() << "an intersecting scene was accepted";
   } catch (const Error& e) {
     EXPECT_EQ(e.status(), Status::intersecting);
@@ -153,31 +153,31 @@ TEST(ContactScenes, IntersectingStartIsRejectedNamingThePair) {
   Scene touching = cloth_scene(horizontal_cloth(0.8, 6, kRadius + 1e-4), 0.0, 0.01, 1);
   touching.obstacles.push_back(static_obstacle("box", make_box(Vec3(0.5, 0.5, 0.5)), 0.0));
   touching.bodies[0].mesh.vertices.col(1).array() = 0.25 + 1e-4;
-  EXPECT_THROW(DirectSimulation{touching}, Error);
+  EXPECT_THROW(LevelSimulation{touching}, Error);
 }
 
 TEST(ContactScenes, NonsenseContactParametersAreRejected) {
   Scene scene = cloth_scene(horizontal_cloth(0.8, 4, 1.0), 0.0, 0.01, 1);
   Scene bad_dhat = scene;
   bad_dhat.contact.dhat = 0.0;
-  EXPECT_THROW(DirectSimulation{bad_dhat}, Error);
+  EXPECT_THROW(LevelSimulation{bad_dhat}, Error);
   bad_dhat.contact.dhat = -1e-3;
-  EXPECT_THROW(DirectSimulation{bad_dhat}, Error);
+  EXPECT_THROW(LevelSimulation{bad_dhat}, Error);
   Scene bad_mu = scene;
   bad_mu.bodies[0].material.friction = -0.1;
-  EXPECT_THROW(DirectSimulation{bad_mu}, Error);
+  EXPECT_THROW(LevelSimulation{bad_mu}, Error);
   Scene obstacle_without_contact = scene;
   obstacle_without_contact.effects.disable(Effect::contact);
   obstacle_without_contact.obstacles.push_back(
       static_obstacle("sphere", make_sphere(kRadius, 1), 0.0));
-  EXPECT_THROW(DirectSimulation{obstacle_without_contact}, Error);
+  EXPECT_THROW(LevelSimulation{obstacle_without_contact}, Error);
 }
 
 TEST(ContactScenes, DisabledEffectsCostNothing) {
   // Without contact: no contact term, no counters. Contact with μ = 0: no friction term.
   Scene free_fall = cloth_scene(horizontal_cloth(0.8, 4, 1.0), 0.0, 0.01, 2);
   free_fall.effects.disable(Effect::contact);
-  DirectSimulation plain(free_fall);
+  LevelSimulation plain(free_fall);
   const StepRecord r = plain.step();
   EXPECT_FALSE(r.contact.has_value());
   EXPECT_EQ(plain.contact(), nullptr);
@@ -185,7 +185,7 @@ TEST(ContactScenes, DisabledEffectsCostNothing) {
 
   Scene smooth = cloth_scene(horizontal_cloth(0.8, 4, 1.0), 0.0, 0.01, 2);
   smooth.effects.enable(Effect::friction);  // enabled, but every μ is 0
-  DirectSimulation frictionless(smooth);
+  LevelSimulation frictionless(smooth);
   const StepRecord s = frictionless.step();
   ASSERT_TRUE(s.contact.has_value());
   EXPECT_FALSE(s.friction_contacts.has_value());

@@ -5,13 +5,13 @@
 #include <algorithm>
 
 #include "mesh/mesh_generators.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 using namespace progsim;
 
 namespace {
 
-std::vector<std::string> term_names(DirectSimulation& sim) {
+std::vector<std::string> term_names(LevelSimulation& sim) {
   std::vector<std::string> names;
   for (const TermStats& s : sim.term_totals()) names.push_back(s.name);
   return names;
@@ -29,16 +29,16 @@ Scene scene_with(std::initializer_list<Effect> effects, StepMode mode) {
 }  // namespace
 
 TEST(Effects, OnlyEnabledEffectsHaveTerms) {
-  DirectSimulation membrane_only(scene_with({Effect::membrane}, StepMode::quasistatic));
+  LevelSimulation membrane_only(scene_with({Effect::membrane}, StepMode::quasistatic));
   EXPECT_EQ(term_names(membrane_only), (std::vector<std::string>{"membrane"}));
-  DirectSimulation all(scene_with(
+  LevelSimulation all(scene_with(
       {Effect::membrane, Effect::bending, Effect::gravity, Effect::pressure}, StepMode::dynamic));
   EXPECT_EQ(term_names(all),
             (std::vector<std::string>{"inertia", "membrane", "bending", "gravity", "pressure"}));
 }
 
 TEST(Effects, CountersShowWhereTimeWent) {
-  DirectSimulation sim(scene_with({Effect::membrane, Effect::pressure}, StepMode::quasistatic));
+  LevelSimulation sim(scene_with({Effect::membrane, Effect::pressure}, StepMode::quasistatic));
   const StepRecord r = sim.step();
   ASSERT_EQ(r.terms.size(), 2u);
   for (const TermStats& t : r.terms) {
@@ -57,7 +57,7 @@ TEST(Effects, ScriptedHandleFollowsItsRigidMotion) {
   h.motion.velocity = Vec3(0, 0.1, 0);
   scene.handles.push_back(h);
   const Vec3 rest = scene.bodies[0].mesh.vertices.row(0);
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   sim.step();
   sim.step();
   const double t = 2 * scene.time_step;

@@ -56,7 +56,7 @@ Scene plate_on_incline(double theta, double mu, int steps) {
 }
 
 /// Mean velocity of the plate along the slope (m/s).
-double downhill_speed(const DirectSimulation& sim, const Vec3& downhill) {
+double downhill_speed(const LevelSimulation& sim, const Vec3& downhill) {
   return (as_positions(sim.velocities()) * downhill).mean();
 }
 
@@ -84,7 +84,7 @@ Scene edge_pulled_sheet(double dx, int column) {
 
 TEST(Friction, PlateSlidesDownAnInclineWithCoulombAcceleration) {
   const double theta = 30.0 * kPi / 180.0, mu = 0.3;
-  DirectSimulation sim(plate_on_incline(theta, mu, 60));
+  LevelSimulation sim(plate_on_incline(theta, mu, 60));
   const Vec3 downhill = incline(theta).downhill;
   double v20 = 0.0;
   for (int s = 1; s <= 60; ++s) {
@@ -101,7 +101,7 @@ TEST(Friction, PlateSlidesDownAnInclineWithCoulombAcceleration) {
 TEST(Friction, PlateSticksWhenTheSlopeIsBelowTheFrictionAngle) {
   const double theta = 30.0 * kPi / 180.0, mu = 0.7;  // tan θ = 0.577 < μ
   Scene scene = plate_on_incline(theta, mu, 60);
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   for (int s = 0; s < 10; ++s) sim.step();  // settles onto the slope
   const Positions start = sim.positions();
   for (int s = 10; s < 60; ++s) sim.step();
@@ -115,7 +115,7 @@ TEST(Friction, PlateSticksWhenTheSlopeIsBelowTheFrictionAngle) {
 TEST(Friction, TheFirstSolveOfANewSimulationFreezesItsContacts) {
   // A settle() before any step (a refined level's first solve) must lag friction too: without
   // it the plate would solve frictionless and slide.
-  DirectSimulation sim(plate_on_incline(0.1, 0.5, 1));
+  LevelSimulation sim(plate_on_incline(0.1, 0.5, 1));
   const StepRecord settled = sim.settle();
   ASSERT_TRUE(settled.friction_contacts.has_value());
   EXPECT_GT(*settled.friction_contacts, 0);
@@ -142,7 +142,7 @@ TEST(StrainLimit, HeavyHangingClothNeverExceedsItsLimit) {
     scene.handles.push_back(corners);
     return scene;
   };
-  DirectSimulation free(hanging(false));
+  LevelSimulation free(hanging(false));
   const TriangleMesh& mesh = free.model().rest;
   const StrainLimit gauge(mesh.vertices, mesh.faces, std::vector<double>(mesh.num_faces(), 1.06),
                           0.03, 1.0);
@@ -154,7 +154,7 @@ TEST(StrainLimit, HeavyHangingClothNeverExceedsItsLimit) {
   std::cout << "[ strain limit ] without the limit the cloth stretches to " << free_max
             << std::endl;
   ASSERT_GT(free_max, 1.1) << "the scene must stretch past the limit without it";
-  DirectSimulation limited(hanging(true));
+  LevelSimulation limited(hanging(true));
   double limited_max = 0.0;
   for (int s = 0; s < limited.scene().num_steps(); ++s) {
     const StepRecord r = limited.step();
@@ -174,7 +174,7 @@ TEST(StrainLimit, AStretchNoStateCanMeetIsNeverCalledAnEquilibrium) {
   Handle left;
   for (int j = 0; j <= 8; ++j) left.vertices.push_back(9 * j);
   scene.handles.push_back(left);
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   StepRecord r = sim.step();
   for (int k = 0; k < 20; ++k) {
     EXPECT_GT(r.raised_limits, 0) << "solve " << k;
@@ -190,7 +190,7 @@ TEST(StrainLimit, AHandleMovedBeyondTheLimitIsFollowedNotRefused) {
   // the limit 1.1, where the barrier is infinite. The limits are raised for the solve and come
   // back down as the cloth follows the edge.
   Scene scene = edge_pulled_sheet(-0.2, 0);
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   StepRecord r = sim.step();
   EXPECT_NE(r.newton.stop, NewtonStop::non_finite);
   EXPECT_GT(r.raised_limits, 0);  // some faces start beyond the limit

@@ -6,7 +6,7 @@
 
 #include "common/constants.hpp"
 #include "mesh/mesh_generators.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 using namespace progsim;
 
@@ -35,7 +35,7 @@ void pin_near(Scene& scene, const Vec3& corner, double radius) {
 }
 
 /// Runs every step and checks each one is finite and ends with a reported reason.
-void run_and_expect_finite(DirectSimulation& sim) {
+void run_and_expect_finite(LevelSimulation& sim) {
   int iterations = 0, converged = 0;
   for (int s = 0; s < sim.scene().num_steps(); ++s) {
     const StepRecord r = sim.step();
@@ -81,7 +81,7 @@ TEST(HardCases, StiffThinAluminiumPlateUnderGravityStaysFinite) {
   scene.gravity = Vec3(0, 0, -9.81);  // out of plane: the foil folds down from two corners
   pin_near(scene, Vec3(0, 0.2, 0), 0.011);
   pin_near(scene, Vec3(0.2, 0.2, 0), 0.011);
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   run_and_expect_finite(sim);
   EXPECT_LT(sim.positions().col(2).minCoeff(), -1e-2);  // it moved under the load
 }
@@ -92,7 +92,7 @@ TEST(HardCases, StiffThinAluminiumPlateQuasistaticStaysFinite) {
   scene.mode = StepMode::quasistatic;
   scene.gravity = Vec3(0, 0, -9.81);  // out of plane: the sheet sags between its clamps
   for (double x : {0.0, 0.2}) pin_near(scene, Vec3(x, 0.1, 0), 0.1001);
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   run_and_expect_finite(sim);
   std::cout << "[ aluminium ] quasistatic sag " << -sim.positions().col(2).minCoeff() << " m"
             << std::endl;
@@ -107,7 +107,7 @@ TEST(HardCases, HugeTimeStepFreeFallFollowsImplicitEulerExactly) {
   heavy.thickness = 0.01;
   Scene scene = sheet_scene(make_grid(1, 1, 10, 10), heavy, 0.1, 1.0);
   scene.solver.tolerance = 1e-10;
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   run_and_expect_finite(sim);
   const double g = 9.81, h = 0.1, n = 10;
   EXPECT_NEAR(sim.positions().col(1).mean() - 0.5, -g * h * h * n * (n + 1) / 2, 1e-6);
@@ -119,7 +119,7 @@ TEST(HardCases, HugeTimeStepHeavyPinnedDropStaysFinite) {
   heavy.thickness = 0.005;
   Scene scene = sheet_scene(make_grid(1, 1, 20, 20), heavy, 0.1, 2.0);
   pin_near(scene, Vec3(0, 1, 0), 0.01);
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   run_and_expect_finite(sim);
   EXPECT_LT(sim.positions().col(1).minCoeff(), 0.0);
 }
@@ -136,6 +136,6 @@ TEST(HardCases, SliverTrianglesStayFinite) {
   Scene scene = sheet_scene(mesh, cloth, 0.02, 0.4);
   pin_near(scene, Vec3(0, 1, 0), 0.01);
   pin_near(scene, Vec3(1, 1, 0), 0.01);
-  DirectSimulation sim(scene);
+  LevelSimulation sim(scene);
   run_and_expect_finite(sim);
 }

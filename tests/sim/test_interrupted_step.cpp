@@ -3,19 +3,19 @@
 #include <gtest/gtest.h>
 
 #include "scene/scene_json.hpp"
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 using namespace progsim;
 
 TEST(InterruptedStep, StopsInsideTheSolveAndGoesOnOnceLifted) {
   // The plate's first load step (its clamped sides close in) takes several Newton iterations.
   const Scene plate = load_scene_file(PROGSIM_SOURCE_DIR "/scenes/psq_plate_buckling.json");
-  DirectSimulation whole(plate);
+  LevelSimulation whole(plate);
   const StepRecord full = whole.step();
   ASSERT_GT(full.newton.iterations, 2);
   ASSERT_EQ(full.newton.stop, NewtonStop::converged);
 
-  DirectSimulation sim(plate);
+  LevelSimulation sim(plate);
   int checks = 0;
   sim.set_interrupt([&] { return ++checks > 2; });
   const StepRecord cut = sim.step();

@@ -1,4 +1,4 @@
-#include "sim/direct_simulation.hpp"
+#include "sim/level_simulation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "energy/inertia.hpp"
 #include "energy/pressure.hpp"
 #include "mesh/intersection_check.hpp"
-#include "progressive/prolonged_elastics.hpp"
+#include "energy/prolonged_elastics.hpp"
 #include "sim/contact_setup.hpp"
 #include "sim/obstacle_script.hpp"
 #include "sim/shell_elastics.hpp"
@@ -47,14 +47,14 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
 
 }  // namespace
 
-std::size_t DirectSimulation::intersecting_face_pairs() const {
+std::size_t LevelSimulation::intersecting_face_pairs() const {
   if (contact_) return crossing_faces(*contact_, x_, 0).size();
   return intersecting_faces(Positions(as_positions(x_)), model_.rest.faces).size();
 }
 
-DirectSimulation::DirectSimulation(Scene scene) : DirectSimulation(std::move(scene), {}, {}) {}
+LevelSimulation::LevelSimulation(Scene scene) : LevelSimulation(std::move(scene), {}, {}) {}
 
-DirectSimulation::DirectSimulation(Scene scene, SimulationLevel level, LevelStart start)
+LevelSimulation::LevelSimulation(Scene scene, SimulationLevel level, LevelStart start)
     : scene_(validated(std::move(scene))),
       level_(std::move(level)),
       obstacles_(std::make_unique<ObstacleScript>(scene_)),
@@ -83,7 +83,7 @@ DirectSimulation::DirectSimulation(Scene scene, SimulationLevel level, LevelStar
   build_problem();
 }
 
-void DirectSimulation::build_models() {
+void LevelSimulation::build_models() {
   ShellModel finest = build_shell_model(scene_);
   const std::vector<int> finest_handles = vertex_handles(scene_, finest);
   if (!level_.hierarchy || level_.is_finest()) {
@@ -102,9 +102,9 @@ void DirectSimulation::build_models() {
       !level_.to_finest.empty() ? std::make_shared<const ShellModel>(std::move(finest)) : nullptr;
 }
 
-DirectSimulation::~DirectSimulation() = default;
+LevelSimulation::~LevelSimulation() = default;
 
-void DirectSimulation::build_problem() {
+void LevelSimulation::build_problem() {
   // Built aside and committed at the end: on Error (e.g. an intersecting start) the simulation
   // keeps its previous problem. The previous contact term passes on obstacle positions and κ.
   const int n = model_.rest.num_vertices();
@@ -139,11 +139,11 @@ void DirectSimulation::build_problem() {
   pin_finest_handles(time());
 }
 
-void DirectSimulation::pin_finest_handles(double t) {
+void LevelSimulation::pin_finest_handles(double t) {
   if (proxy_) proxy_->pin_finest_vertices(finest_handles_.vertices(), finest_handles_.targets(t));
 }
 
-void DirectSimulation::add_elastics(Problem& problem,
+void LevelSimulation::add_elastics(Problem& problem,
                                     std::vector<std::pair<Pressure*, int>>& pressures) const {
   if (!finest_) {  // the level's own shell energy
     ShellElastics own = make_shell_elastics(scene_, model_, true);
@@ -166,7 +166,7 @@ void DirectSimulation::add_elastics(Problem& problem,
                                                        std::move(own.terms)));
 }
 
-ContactPotential& DirectSimulation::add_contact(Problem& problem) {
+ContactPotential& LevelSimulation::add_contact(Problem& problem) {
   auto contact = make_contact_potential(scene_, model_, *obstacles_);
   const Eigen::Index num_obstacle = contact->obstacle_positions().rows();
   if (contact_ && contact_->obstacle_positions().rows() == num_obstacle)
@@ -190,11 +190,11 @@ ContactPotential& DirectSimulation::add_contact(Problem& problem) {
   return problem.add_term(std::move(contact));
 }
 
-Positions DirectSimulation::obstacle_positions() const {
+Positions LevelSimulation::obstacle_positions() const {
   return contact_ ? contact_->obstacle_positions() : Positions(0, 3);
 }
 
-void DirectSimulation::apply_pressure(double t) {
+void LevelSimulation::apply_pressure(double t) {
   for (auto& [term, b] : pressures_) {
     const Body& body = scene_.bodies[b];
     const double ramp = body.pressure_ramp > 0.0 ? std::min(1.0, t / body.pressure_ramp) : 1.0;
@@ -202,7 +202,7 @@ void DirectSimulation::apply_pressure(double t) {
   }
 }
 
-double DirectSimulation::advance_scripts(double t, double decrement_scale, NewtonReport& report) {
+double LevelSimulation::advance_scripts(double t, double decrement_scale, NewtonReport& report) {
   if (!contact_) {
     handles_.apply(t, x_);
     fit_limits_to_prescribed_motion();
@@ -244,7 +244,7 @@ double DirectSimulation::advance_scripts(double t, double decrement_scale, Newto
   return reached;
 }
 
-bool DirectSimulation::carry_shell(const Positions& obstacle_target) {
+bool LevelSimulation::carry_shell(const Positions& obstacle_target) {
   // Where an obstacle presses on the shell, the free vertices it touches move with it: a
   // stiff shell (a can under a plate) is then pushed along and its solve spreads the motion,
   // instead of each round closing the contact gap tenfold while the shell barely yields.
@@ -258,7 +258,7 @@ bool DirectSimulation::carry_shell(const Positions& obstacle_target) {
   return any;
 }
 
-void DirectSimulation::fit_limits_to_prescribed_motion() {
+void LevelSimulation::fit_limits_to_prescribed_motion() {
   // Handles moved faces next to them beyond their strain limit, where the barrier is infinite
   // (a twist's first free row lags the turned edge): their limits are raised and the following
   // solves bring them back down (StrainLimit::fit_limits, as for a refined start).
@@ -266,7 +266,7 @@ void DirectSimulation::fit_limits_to_prescribed_motion() {
     fit_to_start_ = true;
 }
 
-void DirectSimulation::update_scene(Scene scene) {
+void LevelSimulation::update_scene(Scene scene) {
   validate_scene(scene);
   const bool same_size = scene.bodies.size() == scene_.bodies.size() &&
                          std::equal(scene.bodies.begin(), scene.bodies.end(), scene_.bodies.begin(),
@@ -297,15 +297,15 @@ void DirectSimulation::update_scene(Scene scene) {
   if (scene_.mode == StepMode::quasistatic) v_.setZero();
 }
 
-StepRecord DirectSimulation::step() {
+StepRecord LevelSimulation::step() {
   return solve_at((steps_taken_ + 1) * scene_.time_step, true);
 }
 
-StepRecord DirectSimulation::settle() {
+StepRecord LevelSimulation::settle() {
   return solve_at(time(), false);
 }
 
-StepRecord DirectSimulation::solve_at(double t, bool new_step) {
+StepRecord LevelSimulation::solve_at(double t, bool new_step) {
   Timer timer;
   const std::vector<TermStats> before = term_totals();
   const double h = scene_.time_step;
@@ -343,7 +343,7 @@ StepRecord DirectSimulation::solve_at(double t, bool new_step) {
   return record;
 }
 
-bool DirectSimulation::at_rest(const StepRecord& record) const {
+bool LevelSimulation::at_rest(const StepRecord& record) const {
   const NewtonStop stop = record.newton.stop;
   if (!level_.to_finest.empty())  // a preview: PSQ Algorithm 1 line 10, ‖d‖₂ < √n_l h ε
     return (stop == NewtonStop::converged || stop == NewtonStop::max_iterations) &&
@@ -352,7 +352,7 @@ bool DirectSimulation::at_rest(const StepRecord& record) const {
          (!scene_.progressive.proximal || record.newton.iterations == 0);
 }
 
-void DirectSimulation::restore_fitted(StepRecord& record) {
+void LevelSimulation::restore_fitted(StepRecord& record) {
   // Raise the lowered offsets and lower the raised limits as far as the solve allows. A solve
   // leaves no other pair inside its offset, so without lowered offsets there is nothing to
   // refit (and no broad phase to pay for: prescribed motion raises limits every step).
@@ -362,7 +362,7 @@ void DirectSimulation::restore_fitted(StepRecord& record) {
   fit_to_start_ = record.reduced_offsets > 0 || record.raised_limits > 0;
 }
 
-std::vector<TermStats> DirectSimulation::term_totals() const {
+std::vector<TermStats> LevelSimulation::term_totals() const {
   std::vector<TermStats> totals = problem_->term_stats();
   if (proxy_) {
     const std::vector<TermStats> finest = proxy_->finest_term_stats();

@@ -1,4 +1,4 @@
-#include "progressive/galerkin_hessian.hpp"
+#include "energy/galerkin_hessian.hpp"
 
 #include <string>
 

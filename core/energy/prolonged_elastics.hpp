@@ -7,7 +7,7 @@
 #include "energy/energy_term.hpp"
 #include "hierarchy/shell_prolongation.hpp"
 #include "problem/problem.hpp"
-#include "progressive/galerkin_hessian.hpp"
+#include "energy/galerkin_hessian.hpp"
 
 namespace progsim {
 

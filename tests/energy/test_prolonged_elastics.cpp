@@ -12,7 +12,7 @@
 #include "hierarchy/level_prolongation.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "mesh/mesh_topology.hpp"
-#include "progressive/prolonged_elastics.hpp"
+#include "energy/prolonged_elastics.hpp"
 #include "support/energy_checks.hpp"
 
 using namespace progsim;

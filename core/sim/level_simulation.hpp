@@ -1,6 +1,8 @@
 #pragma once
-/// @file Direct (single-level) simulation of a scene: the baseline every progressive method
-/// is compared against, and the finest-level solve of the progressive drivers.
+/// @file One level's simulation: the scene's bodies on one level of a mesh hierarchy (or on
+/// the scene's own mesh) with its problem, its x̂, its scripted handles and obstacles and its
+/// step records. The direct baseline is one LevelSimulation with the level's own energy; the
+/// progressive drivers (PSQ, PD) compose one per level.
 #include <functional>
 #include <memory>
 #include <vector>
@@ -38,12 +40,12 @@ struct LevelStart {
 /// Builds one energy term per enabled effect and advances the scene step by step with
 /// projected Newton. Dynamic scenes minimise the implicit-Euler incremental potential;
 /// quasistatic scenes minimise the potential energy at each step's loads.
-class DirectSimulation {
+class LevelSimulation {
  public:
   /// Validates the scene (throws Error on bad input) and builds the problem. With contact, a
   /// scene whose shell and obstacles intersect (CGAL exact predicates) or come within their
   /// contact offsets is rejected with Error(intersecting) naming the pair.
-  explicit DirectSimulation(Scene scene);
+  explicit LevelSimulation(Scene scene);
   /// The scene solved at one level of a hierarchy built from its merged bodies (with the
   /// scene's handles as vertex groups), from `start` (the level's rest shape by default). With
   /// `level.to_finest` set the shell energy is the proxy Ψ_L(P^l(x)) of progressive preview
@@ -51,10 +53,10 @@ class DirectSimulation {
   /// Throws Error(unsupported) for a dynamic scene on a coarse level (progressive dynamics is
   /// not implemented), Error(invalid_argument) if the hierarchy does not match the scene or the
   /// start has the wrong size, Error(intersecting) as above.
-  DirectSimulation(Scene scene, SimulationLevel level, LevelStart start = {});
-  DirectSimulation(const DirectSimulation&) = delete;
-  DirectSimulation& operator=(const DirectSimulation&) = delete;
-  ~DirectSimulation();
+  LevelSimulation(Scene scene, SimulationLevel level, LevelStart start = {});
+  LevelSimulation(const LevelSimulation&) = delete;
+  LevelSimulation& operator=(const LevelSimulation&) = delete;
+  ~LevelSimulation();
 
   /// Advances one step. Never throws for numerical trouble: a failed Newton solve is
   /// reported in the record's stop reason and the state stays finite (the last iterate

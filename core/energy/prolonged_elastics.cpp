@@ -1,4 +1,4 @@
-#include "progressive/prolonged_elastics.hpp"
+#include "energy/prolonged_elastics.hpp"
 
 #include "common/error.hpp"
 
