@@ -5,7 +5,6 @@
 
 #include "common/error.hpp"
 #include "common/timer.hpp"
-#include "hierarchy/level_prolongation.hpp"
 #include "sim/contact_setup.hpp"
 #include "sim/handle_targets.hpp"
 #include "sim/obstacle_script.hpp"
@@ -62,6 +61,10 @@ ProgressiveSimulation::ProgressiveSimulation(Scene scene,
   if (!hierarchy_)
     hierarchy_ =
         std::make_shared<const MeshHierarchy>(checked_scene_hierarchy(scene_, progress, user));
+  if (hierarchy_->num_levels() > 1 && scene_.mode == StepMode::dynamic)
+    fail(Status::unsupported, scene_.name +
+                                  ": PSQ is quasistatic; a dynamic scene on several levels is "
+                                  "animated by Progressive Dynamics (ProgressiveDynamics)");
   if (hierarchy_->num_levels() > 1) {
     std::vector<int> shell_vertices;
     for (const HierarchyLevel& l : hierarchy_->levels)
@@ -69,40 +72,16 @@ ProgressiveSimulation::ProgressiveSimulation(Scene scene,
     auto obstacles = std::make_unique<const ObstacleHierarchy>(scene_, shell_vertices);
     if (!obstacles->empty()) obstacle_levels_ = std::move(obstacles);
   }
-  to_finest_.resize(hierarchy_->num_levels());
-  to_next_.resize(hierarchy_->num_levels());
+  operators_ = std::make_unique<const LevelOperators>(hierarchy_);
   records_.resize(hierarchy_->num_levels());
   sim_ = make_level(0, {});
 }
 
 ProgressiveSimulation::~ProgressiveSimulation() = default;
 
-const std::shared_ptr<const ShellProlongation>& ProgressiveSimulation::direct_operator(
-    int level) const {
-  if (!to_finest_[level])
-    to_finest_[level] =
-        std::make_shared<const ShellProlongation>(direct_prolongation(*hierarchy_, level));
-  return to_finest_[level];
-}
-
-const std::shared_ptr<const ShellProlongation>& ProgressiveSimulation::next_operator(
-    int level) const {
-  if (!to_next_[level])
-    to_next_[level] =
-        std::make_shared<const ShellProlongation>(next_level_prolongation(*hierarchy_, level));
-  return to_next_[level];
-}
-
 std::vector<std::shared_ptr<const ShellProlongation>> ProgressiveSimulation::to_finest(
     int level) const {
-  if (level < 0 || level >= finest())
-    fail(Status::out_of_range, "levels [0, " + std::to_string(finest()) +
-                                   ") prolong to the finest level, not level " +
-                                   std::to_string(level));
-  if (scene_.progressive.prolongation == ProxyProlongation::direct) return {direct_operator(level)};
-  std::vector<std::shared_ptr<const ShellProlongation>> chain;
-  for (int k = level; k < finest(); ++k) chain.push_back(next_operator(k));
-  return chain;
+  return operators_->to_finest(level, scene_.progressive.prolongation);
 }
 
 Positions ProgressiveSimulation::prolong_to_finest(int level, const Positions& x) const {
@@ -123,7 +102,7 @@ Scene ProgressiveSimulation::level_scene(int level) const {
 }
 
 std::unique_ptr<LevelSimulation> ProgressiveSimulation::make_level(int level,
-                                                                    LevelStart start) const {
+                                                                   LevelStart start) const {
   SimulationLevel spec{hierarchy_, level, {}};
   if (level < finest()) spec.to_finest = to_finest(level);
   return std::make_unique<LevelSimulation>(level_scene(level), std::move(spec), std::move(start));
@@ -228,7 +207,7 @@ void ProgressiveSimulation::refine() {
   Timer timer;
   const std::string where = "refining level " + std::to_string(level_) + ": ";
   const Positions coarse = sim_->positions();
-  const Positions target = (*next_operator(level_))(coarse);  // P^l_{l+1}(x_l), PSQ eq. 7
+  const Positions target = next_operator(level_)(coarse);  // P^l_{l+1}(x_l), PSQ eq. 7
   if (!target.allFinite())
     fail(Status::numerical_failure, where + "the prolonged state is not finite");
   // Without contact the level starts at the target; with contact, PSQ §4.4's safe expansion
@@ -292,8 +271,8 @@ Positions ProgressiveSimulation::positions(int level) const {
   if (level == level_) return sim_->positions();
   if (level < level_) return records_[level].positions;
   Positions x = sim_->positions();
-  if (level == finest()) return prolong_to_finest(level_, x);       // the proxy's own map
-  for (int k = level_; k < level; ++k) x = (*next_operator(k))(x);  // PSQ eq. 7 in turn
+  if (level == finest()) return prolong_to_finest(level_, x);    // the proxy's own map
+  for (int k = level_; k < level; ++k) x = next_operator(k)(x);  // PSQ eq. 7 in turn
   return x;
 }
 

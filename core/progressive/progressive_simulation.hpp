@@ -8,6 +8,7 @@
 
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "hierarchy/shell_prolongation.hpp"
+#include "progressive/level_operators.hpp"
 #include "progressive/progressive_obstacles.hpp"
 #include "progressive/safe_refinement.hpp"
 #include "progressive/state_distance.hpp"
@@ -48,8 +49,9 @@ struct LevelRecord {
   Positions positions;  ///< the state when the level was left (empty while current)
 };
 
-/// The progressive driver. Level 0 is the coarsest; finest() is the scene's mesh. Quasistatic
-/// scenes only (PSQ); dynamic scenes (Progressive Dynamics) are refused on coarse levels.
+/// The PSQ driver. Level 0 is the coarsest; finest() is the scene's mesh. Quasistatic scenes
+/// only; a dynamic scene on several levels is refused (Error(unsupported)): ProgressiveDynamics
+/// animates it. On a single level either mode runs as a direct simulation.
 class ProgressiveSimulation {
  public:
   /// Builds the scene's hierarchy from `scene.progressive` (its handles kept as vertex groups),
@@ -126,9 +128,8 @@ class ProgressiveSimulation {
   Scene level_scene(int level) const;
   /// A new simulation of `level` from `start`.
   std::unique_ptr<LevelSimulation> make_level(int level, LevelStart start) const;
-  /// P_{level+1}^level (PSQ eq. 7) and P^level (eq. 9), built once.
-  const std::shared_ptr<const ShellProlongation>& next_operator(int level) const;
-  const std::shared_ptr<const ShellProlongation>& direct_operator(int level) const;
+  /// P_{level+1}^level (PSQ eq. 7), built once.
+  const ShellProlongation& next_operator(int level) const { return *operators_->next(level); }
   /// The shell model of `level` (the scene's merged bodies at the finest level).
   ShellModel level_model(int level) const;
   /// PSQ §4.4.5: moves the new vertices of level_ + 1's refined start `start` (`model` is that
@@ -152,8 +153,7 @@ class ProgressiveSimulation {
   Scene scene_;
   std::shared_ptr<const MeshHierarchy> hierarchy_;
   std::unique_ptr<const ObstacleHierarchy> obstacle_levels_;  // null: no progressive obstacle
-  mutable std::vector<std::shared_ptr<const ShellProlongation>> to_finest_;  // lazily built
-  mutable std::vector<std::shared_ptr<const ShellProlongation>> to_next_;    // lazily built
+  std::unique_ptr<const LevelOperators> operators_;
   std::unique_ptr<LevelSimulation> sim_;
   std::vector<LevelRecord> records_;
   int level_ = 0;

@@ -94,6 +94,8 @@ void validate_progressive(const ProgressiveSettings& p) {
     fail(Status::invalid_scene, where + ".preview_tolerance must lie in [0, 1]");
   if (p.preview_iterations < 1)
     fail(Status::invalid_scene, where + ".preview_iterations must be >= 1");
+  if (!(p.consistency_weight >= 0.0) || !std::isfinite(p.consistency_weight))
+    fail(Status::invalid_scene, where + ".consistency_weight must be a finite number >= 0");
   for (int n : p.level_vertices)
     if (n < 4)
       fail(Status::invalid_scene, where + ".levels: a level of " + std::to_string(n) +

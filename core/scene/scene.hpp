@@ -98,6 +98,20 @@ enum class MembraneModel {
   tension_field,  ///< its relaxation, free in compression (TensionFieldMembrane, Pipkin 1986)
 };
 
+/// How a finer level of a progressive animation predicts its step (the x̂ of its incremental
+/// potential) from the coarser level's trajectory (Progressive Dynamics).
+enum class DynamicsPrediction {
+  /// PD++ (Zhang, James and Kaufman 2025), VPD eq. 2's velocity-only prolongation: the level's
+  /// own positions and the coarser level's velocity, x̂ = x_{l+1}^t + h U v_l^t.
+  velocity_only,
+  /// PD eq. 5: the coarser level's positions and velocity, x̂ = P(x_l^t) + h U v_l^t; resets
+  /// the fine positions toward the coarse ones every step.
+  prolonged_positions,
+  /// PSQ per frame (PD §4.3, Fig. 6; for comparison only): x̂ = P(x_l^{t+1}), each step a
+  /// proximal relaxation toward the prolonged coarse frame, with no inertia of its own.
+  per_frame,
+};
+
 /// How a scene is simulated progressively (PSQ, Zhang et al. 2023): the levels of its mesh
 /// hierarchy and how much work a preview step does.
 struct ProgressiveSettings {
@@ -121,6 +135,12 @@ struct ProgressiveSettings {
   /// extension, for flat cloth whose coarse levels lock). The finest level and every direct
   /// solve keep neo_hookean.
   MembraneModel preview_membrane = MembraneModel::neo_hookean;
+  /// Dynamic scenes: how a finer level predicts its steps from the coarser trajectory.
+  DynamicsPrediction prediction = DynamicsPrediction::velocity_only;
+  /// Dynamic scenes: weight w ≥ 0 of the consistency penalty (VPD eq. 4, from PD++), the
+  /// mass-weighted quadratic w/(2h²) ‖x − P(x_{l−1}^{t+1})‖²_M pulling each finer level toward
+  /// the prolonged coarser frame (w = 1 weighs it like the inertia); 0: no penalty term.
+  double consistency_weight = 0.0;
 
   /// Levels below the scene's mesh that the settings ask for (the finest level's index).
   int num_coarse_levels() const {

@@ -331,15 +331,16 @@ Enum choice(const Json& j, const std::string& key, const std::string& where,
 /// plus the preview and proxy options and "proximal".
 ProgressiveSettings progressive(const Json& j) {
   const std::string where = "progressive";
-  expect_keys(
-      j, where,
-      {"coarse_levels", "coarsening_ratio", "levels", "preview_iterations", "preview_tolerance",
-       "prolongation", "proxy_hessian", "proximal", "preview_membrane"});
+  expect_keys(j, where,
+              {"coarse_levels", "coarsening_ratio", "levels", "preview_iterations",
+               "preview_tolerance", "prolongation", "proxy_hessian", "proximal", "preview_membrane",
+               "prediction", "consistency_weight"});
   ProgressiveSettings p;
   if (j.contains("coarse_levels"))
     p.coarse_levels = integer(j.at("coarse_levels"), where + ".coarse_levels");
   p.coarsening_ratio = number_or(j, "coarsening_ratio", p.coarsening_ratio, where);
   p.preview_tolerance = number_or(j, "preview_tolerance", p.preview_tolerance, where);
+  p.consistency_weight = number_or(j, "consistency_weight", p.consistency_weight, where);
   if (j.contains("preview_iterations"))
     p.preview_iterations = integer(j.at("preview_iterations"), where + ".preview_iterations");
   if (j.contains("proximal")) {
@@ -355,6 +356,11 @@ ProgressiveSettings progressive(const Json& j) {
   p.preview_membrane = choice<MembraneModel>(j, "preview_membrane", where,
                                              {{"neo_hookean", MembraneModel::neo_hookean},
                                               {"tension_field", MembraneModel::tension_field}});
+  p.prediction =
+      choice<DynamicsPrediction>(j, "prediction", where,
+                                 {{"velocity_only", DynamicsPrediction::velocity_only},
+                                  {"prolonged_positions", DynamicsPrediction::prolonged_positions},
+                                  {"per_frame", DynamicsPrediction::per_frame}});
   if (j.contains("levels")) {
     const Json& levels = j.at("levels");
     if (!levels.is_array()) scene_error(where + ".levels", "must be an array of vertex counts");

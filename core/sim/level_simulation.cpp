@@ -5,10 +5,12 @@
 
 #include "common/error.hpp"
 #include "common/timer.hpp"
+#include "energy/consistency_penalty.hpp"
+#include "energy/gravity.hpp"
 #include "energy/inertia.hpp"
 #include "energy/pressure.hpp"
-#include "mesh/intersection_check.hpp"
 #include "energy/prolonged_elastics.hpp"
+#include "mesh/intersection_check.hpp"
 #include "sim/contact_setup.hpp"
 #include "sim/obstacle_script.hpp"
 #include "sim/shell_elastics.hpp"
@@ -62,10 +64,6 @@ LevelSimulation::LevelSimulation(Scene scene, SimulationLevel level, LevelStart 
       fit_to_start_(start.fit_to_start),
       start_obstacles_(std::move(start.obstacles)),
       start_stiffness_(start.contact_stiffness) {
-  if (level_.hierarchy && !level_.is_finest() && scene_.mode == StepMode::dynamic)
-    fail(Status::unsupported, scene_.name +
-                                  ": dynamic scenes on coarse levels (Progressive Dynamics) are "
-                                  "not implemented; use the quasistatic mode");
   build_models();
   const int n = model_.rest.num_vertices();
   const bool given = start.positions.size() > 0;
@@ -96,6 +94,8 @@ void LevelSimulation::build_models() {
   const MeshHierarchy& h = *level_.hierarchy;
   check_hierarchy_matches(h, finest.rest, finest_handles);
   model_ = level_shell_model(finest, h, level_.level);
+  if (scene_.mode == StepMode::dynamic && !level_.to_finest.empty())  // PD eq. 4's M_l
+    model_.vertex_masses = prolonged_masses(level_.to_finest, finest.vertex_masses);
   finest_handles_ = HandleTargets(scene_, finest.rest.vertices, finest_handles);
   handles_ = HandleTargets(scene_, model_.rest.vertices, level_groups(h, level_.level));
   finest_ =
@@ -115,6 +115,10 @@ void LevelSimulation::build_problem() {
   if (scene_.mode == StepMode::dynamic || scene_.progressive.proximal)  // PSQ eq. 1 / 3
     inertia = &problem->add_term(std::make_unique<Inertia>(model_.vertex_masses, scene_.time_step));
   add_elastics(*problem, pressures);
+  Inertia* penalty = nullptr;
+  if (scene_.mode == StepMode::dynamic && level_.consistency_weight > 0.0)  // VPD eq. 4
+    penalty = &problem->add_term(std::make_unique<ConsistencyPenalty>(
+        model_.vertex_masses, level_.consistency_weight, scene_.time_step));
   ContactPotential* contact = fx.has(Effect::contact) ? &add_contact(*problem) : nullptr;
   FrictionPotential* friction = nullptr;
   if (contact && fx.has(Effect::friction))
@@ -130,6 +134,7 @@ void LevelSimulation::build_problem() {
   problem->finalize();
   problem_ = std::move(problem);
   inertia_ = inertia;
+  penalty_ = penalty;
   pressures_ = std::move(pressures);
   contact_ = contact;
   friction_ = friction;
@@ -144,15 +149,22 @@ void LevelSimulation::pin_finest_handles(double t) {
 }
 
 void LevelSimulation::add_elastics(Problem& problem,
-                                    std::vector<std::pair<Pressure*, int>>& pressures) const {
-  if (!finest_) {  // the level's own shell energy
-    ShellElastics own = make_shell_elastics(scene_, model_, true);
-    pressures = own.pressures;
-    for (auto& term : own.terms) problem.add_term(std::move(term));
-    return;
-  }
+                                   std::vector<std::pair<Pressure*, int>>& pressures) const {
+  if (finest_) return add_proxy_elastics(problem, pressures);
+  ShellElastics own = make_shell_elastics(scene_, model_, true);  // the level's own energy
+  pressures = own.pressures;
+  for (auto& term : own.terms) problem.add_term(std::move(term));
+}
+
+void LevelSimulation::add_proxy_elastics(Problem& problem,
+                                         std::vector<std::pair<Pressure*, int>>& pressures) const {
+  // A dynamic preview's gravity acts on the prolonged masses M_l its inertia uses: through the
+  // prolongation it would also act on the offsets a(x), a torque that makes a free fall deform.
+  const bool dynamic = scene_.mode == StepMode::dynamic;
+  if (dynamic && scene_.effects.has(Effect::gravity))
+    problem.add_term(std::make_unique<Gravity>(model_.vertex_masses, scene_.gravity));
   const MembraneModel membrane = scene_.progressive.preview_membrane;
-  ShellElastics finest = make_shell_elastics(scene_, *finest_, true, membrane);  // Ψ_L, eq. 2
+  ShellElastics finest = make_shell_elastics(scene_, *finest_, !dynamic, membrane);  // Ψ_L, eq. 2
   if (finest.terms.empty()) return;
   pressures = finest.pressures;
   if (scene_.progressive.hessian == ProxyHessian::galerkin) {
@@ -301,17 +313,50 @@ StepRecord LevelSimulation::step() {
   return solve_at((steps_taken_ + 1) * scene_.time_step, true);
 }
 
+StepRecord LevelSimulation::step(const StepTargets& targets) {
+  check_targets(targets);
+  return solve_at((steps_taken_ + 1) * scene_.time_step, true, targets);
+}
+
+void LevelSimulation::check_targets(const StepTargets& targets) const {
+  const auto check = [&](const Vector& target, const char* what) {
+    if (target.size() != x_.size())
+      fail(Status::invalid_argument, std::string(what) + " has " + std::to_string(target.size()) +
+                                         " DOFs, level " + std::to_string(level_.level) + " has " +
+                                         std::to_string(x_.size()));
+    if (!target.allFinite())
+      fail(Status::invalid_argument, std::string(what) + " has a non-finite entry");
+  };
+  if (targets.predicted.size() > 0) check(targets.predicted, "the predicted state x̂");
+  if (penalty_) check(targets.consistency, "the consistency penalty's target");
+}
+
+void LevelSimulation::set_velocities(const Vector& velocities) {
+  if (scene_.mode != StepMode::dynamic)
+    fail(Status::wrong_call_order, scene_.name + " is quasistatic: it has no velocities to set");
+  if (velocities.size() != v_.size())
+    fail(Status::invalid_argument, "velocities: " + std::to_string(velocities.size()) +
+                                       " values given, the level has " + std::to_string(v_.size()) +
+                                       " DOFs");
+  if (!velocities.allFinite()) fail(Status::invalid_argument, "velocities: a non-finite entry");
+  v_ = velocities;
+}
+
 StepRecord LevelSimulation::settle() {
   return solve_at(time(), false);
 }
 
-StepRecord LevelSimulation::solve_at(double t, bool new_step) {
+StepRecord LevelSimulation::solve_at(double t, bool new_step, const StepTargets& targets) {
   Timer timer;
   const std::vector<TermStats> before = term_totals();
   const double h = scene_.time_step;
-  x_previous_ = x_;
   const bool dynamic = scene_.mode == StepMode::dynamic;
-  if (inertia_) inertia_->set_target(x_ + h * v_);  // x̂ = xᵗ + h vᵗ (implicit Euler; v = 0: xᵗ)
+  const Vector older = dynamic ? Vector(x_ - h * v_) : Vector();  // xᵗ⁻¹ (v = (xᵗ − xᵗ⁻¹)/h)
+  x_previous_ = x_;
+  // x̂ = xᵗ + h vᵗ (implicit Euler; v = 0: xᵗ), or the coarser level's prediction (PD eq. 5).
+  if (inertia_)
+    inertia_->set_target(targets.predicted.size() > 0 ? targets.predicted : Vector(x_ + h * v_));
+  if (penalty_) penalty_->set_target(targets.consistency);
   if (contact_) contact_->reset_min_gap();
   const ContactStats contact_before = contact_ ? contact_->stats() : ContactStats{};
   // Lagged friction (IPC §5): frozen at the step's start, or at the first solve after a rebuild.
@@ -330,7 +375,10 @@ StepRecord LevelSimulation::solve_at(double t, bool new_step) {
   record.change_rms = (x_ - x_previous_).norm() / std::sqrt(x_.size() / 3.0);
   record.equilibrium =
       !dynamic && record.script_reached >= 1.0 && record.raised_limits == 0 && at_rest(record);
-  if (dynamic) v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
+  if (dynamic) {
+    v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
+    record.motion = motion(older, x_previous_, inertia_->target());
+  }
   if (new_step) ++steps_taken_;
   record.step = steps_taken_;
   record.time = t;
@@ -341,6 +389,39 @@ StepRecord LevelSimulation::solve_at(double t, bool new_step) {
   if (strain_limit_) record.max_stretch = strain_limit_->max_stretch(x_);
   record.seconds = timer.seconds();
   return record;
+}
+
+MotionRecord LevelSimulation::motion(const Vector& older, const Vector& before,
+                                     const Vector& predicted) {
+  const Eigen::VectorXd& m = model_.vertex_masses;
+  const double h = scene_.time_step;
+  MotionRecord out;
+  double mass = 0.0;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    out.kinetic_energy += 0.5 * m[i] * v_.segment<3>(3 * i).squaredNorm();  // ½ vᵀMv
+    out.center_of_mass += m[i] * x_.segment<3>(3 * i);
+    mass += m[i];
+  }
+  out.center_of_mass /= mass;
+  // VPD App. C eqs. 17–18 (PD++): the midpoint estimate from implicit Euler as a boundary value
+  // problem, with h²M⁻¹f(xᵗ⁺¹) = xᵗ⁺¹ − x̂ − h²M⁻¹∇E read from the solve.
+  gradient_.resize(x_.size());
+  problem_->gradient(x_, gradient_);
+  double error = 0.0, residual = 0.0, free_mass = 0.0;
+  for (Eigen::Index d = 0; d < x_.size(); ++d) {
+    if (problem_->is_fixed(static_cast<int>(d))) continue;
+    const double md = m[d / 3];
+    const double step = h * h * gradient_[d] / md;  // h²M⁻¹∇E
+    const double midpoint = 0.5 * (older[d] + predicted[d] + step);
+    error += md * (before[d] - midpoint) * (before[d] - midpoint);
+    residual += md * 0.25 * step * step;
+    free_mass += md;
+  }
+  if (free_mass == 0.0) return out;
+  out.continuity_error = std::sqrt(error / free_mass);
+  const double allowed = 0.5 * h * scene_.solver.tolerance * length_;  // Newton's stop, ½ h ε ℓ
+  out.continuity = out.continuity_error / std::max(std::sqrt(residual / free_mass), allowed);
+  return out;
 }
 
 bool LevelSimulation::at_rest(const StepRecord& record) const {

@@ -37,6 +37,12 @@ struct LevelStart {
   double contact_stiffness = 0.0;  ///< κ reached so far (kept if larger than the scene's)
 };
 
+/// What a level of a progressive animation steps toward (Progressive Dynamics, PD eqs. 5–6).
+struct StepTargets {
+  Vector predicted;    ///< x̂ (3|V_l|); empty: xᵗ + h vᵗ, implicit Euler on the level alone
+  Vector consistency;  ///< y of the consistency penalty (3|V_l|); required iff the level has one
+};
+
 /// Builds one energy term per enabled effect and advances the scene step by step with
 /// projected Newton. Dynamic scenes minimise the implicit-Euler incremental potential;
 /// quasistatic scenes minimise the potential energy at each step's loads.
@@ -50,9 +56,11 @@ class LevelSimulation {
   /// scene's handles as vertex groups), from `start` (the level's rest shape by default). With
   /// `level.to_finest` set the shell energy is the proxy Ψ_L(P^l(x)) of progressive preview
   /// (PSQ eq. 2); otherwise the level's own.
-  /// Throws Error(unsupported) for a dynamic scene on a coarse level (progressive dynamics is
-  /// not implemented), Error(invalid_argument) if the hierarchy does not match the scene or the
-  /// start has the wrong size, Error(intersecting) as above.
+  /// A dynamic scene on a coarse level with the proxy (a Progressive Dynamics preview, PD eq. 4)
+  /// takes its inertia and gravity with prolonged_masses(), so that a free fall accelerates
+  /// every vertex at g and the prolonged state does not deform. Throws Error(invalid_argument)
+  /// if the hierarchy does not match the scene or the start has the wrong size,
+  /// Error(intersecting) as above.
   LevelSimulation(Scene scene, SimulationLevel level, LevelStart start = {});
   LevelSimulation(const LevelSimulation&) = delete;
   LevelSimulation& operator=(const LevelSimulation&) = delete;
@@ -62,6 +70,11 @@ class LevelSimulation {
   /// reported in the record's stop reason and the state stays finite (the last iterate
   /// the line search accepted).
   StepRecord step();
+  /// Advances one step toward `targets` (PD eq. 6): x̂ and the consistency penalty's target
+  /// from the coarser level's trajectory. Throws Error(invalid_argument) on a target of the
+  /// wrong size or with a non-finite entry, or without the penalty's target on a level that has
+  /// the penalty (nothing changed); numerical trouble as step().
+  StepRecord step(const StepTargets& targets);
 
   /// Solves again at the current time with the same loads (no time advance, friction not
   /// re-lagged): reaches equilibrium after a refinement or a parameter change.
@@ -78,6 +91,11 @@ class LevelSimulation {
   /// solver settings) and rebuilds the problem, keeping positions, velocities and time.
   /// The bodies' meshes must keep their sizes. Validates first: on Error nothing changed.
   void update_scene(Scene scene);
+
+  /// Sets the velocities (3|V|, m/s) the next step starts from (dynamic scenes). Throws
+  /// Error(invalid_argument) on a wrong size or a non-finite entry, Error(wrong_call_order) for a
+  /// quasistatic scene (nothing changed).
+  void set_velocities(const Vector& velocities);
 
   int steps_taken() const { return steps_taken_; }
   double time() const { return steps_taken_ * scene_.time_step; }
@@ -111,8 +129,17 @@ class LevelSimulation {
   void build_problem();
   /// Membrane, bending, gravity and pressure: direct, or through the prolongation.
   void add_elastics(Problem& problem, std::vector<std::pair<Pressure*, int>>& pressures) const;
-  /// One solve at time t (a new step when advancing, the same loads otherwise).
-  StepRecord solve_at(double t, bool new_step);
+  /// One solve at time t (a new step when advancing, the same loads otherwise) toward
+  /// `targets` (empty: implicit Euler on the level alone).
+  StepRecord solve_at(double t, bool new_step, const StepTargets& targets = {});
+  /// Membrane, bending and pressure through the prolongation; gravity through it too for a
+  /// quasistatic preview, on the level's prolonged masses for a dynamic one.
+  void add_proxy_elastics(Problem& problem,
+                          std::vector<std::pair<Pressure*, int>>& pressures) const;
+  /// The motion after a dynamic step from `before` (xᵗ) and `older` (xᵗ⁻¹), `predicted` its x̂.
+  MotionRecord motion(const Vector& older, const Vector& before, const Vector& predicted);
+  /// Throws Error(invalid_argument) unless `targets` fit this level.
+  void check_targets(const StepTargets& targets) const;
   /// Holds the finest level's handle vertices at their targets at time t in the proxy.
   void pin_finest_handles(double t);
   /// Adds the contact term after checking that the current state does not intersect.
@@ -146,8 +173,9 @@ class LevelSimulation {
   FrictionPotential* friction_ = nullptr;  // owned by problem_, null without friction
   StrainLimit* strain_limit_ = nullptr;    // owned by problem_, null without a limit
   ProlongedElastics* proxy_ = nullptr;     // owned by problem_, null for direct solves
+  Inertia* penalty_ = nullptr;             // owned by problem_, null without consistency penalty
   HandleTargets finest_handles_;           // the finest level's handles, held exactly by proxy_
-  Vector x_, v_, x_previous_, script_target_, script_step_;
+  Vector x_, v_, x_previous_, script_target_, script_step_, gradient_;
   int steps_taken_ = 0;
   double length_ = 1.0;
   bool fit_to_start_ = false;  // offsets or strain limits fitted to a start or to prescribed motion

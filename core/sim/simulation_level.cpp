@@ -70,4 +70,13 @@ void check_hierarchy_matches(const MeshHierarchy& hierarchy, const TriangleMesh&
                "(C ABI: ps_hierarchy_def.pinned_vertices)");
 }
 
+Eigen::VectorXd prolonged_masses(
+    const std::vector<std::shared_ptr<const ShellProlongation>>& to_finest,
+    const Eigen::VectorXd& finest_masses) {
+  Eigen::VectorXd masses = finest_masses;
+  for (auto op = to_finest.rbegin(); op != to_finest.rend(); ++op)
+    masses = (*op)->intrinsic().transpose() * masses;  // m_k = U_kᵀ m_{k+1}
+  return masses;
+}
+
 }  // namespace progsim

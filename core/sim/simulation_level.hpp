@@ -19,6 +19,9 @@ struct SimulationLevel {
   /// or P_{l+1}^l, …, P_L^{L−1}). Set: the shell energy is the proxy Ψ_L(P(x)) (PSQ eq. 2,
   /// progressive preview). Empty: the level's own shell energy (a direct solve at this level).
   std::vector<std::shared_ptr<const ShellProlongation>> to_finest;
+  /// Weight of the consistency penalty toward the coarser level's prolonged frame (VPD eq. 4;
+  /// progressive dynamics on levels above the coarsest); 0: no penalty term.
+  double consistency_weight = 0.0;
 
   bool is_finest() const { return !hierarchy || level == hierarchy->finest(); }
 };
@@ -29,6 +32,14 @@ struct SimulationLevel {
 /// connected components). Throws Error(invalid_argument) if the hierarchy's finest level is not
 /// `finest.rest`.
 ShellModel level_shell_model(const ShellModel& finest, const MeshHierarchy& hierarchy, int level);
+
+/// The finest level's lumped masses restricted through the intrinsic parts of `to_finest`,
+/// m_l = U_lᵀ ⋯ U_{L−1}ᵀ m_L: the masses whose centre of mass and momentum equal those of the
+/// prolonged state U x_l under the finest masses (rows of U sum to 1, so the total is kept).
+/// A dynamic preview's inertia and gravity use them (PD eq. 4 with consistent inertia).
+Eigen::VectorXd prolonged_masses(
+    const std::vector<std::shared_ptr<const ShellProlongation>>& to_finest,
+    const Eigen::VectorXd& finest_masses);
 
 /// Throws Error(invalid_argument) unless `hierarchy`'s finest level has exactly the vertices and
 /// faces of `finest` and its vertex groups are exactly `vertex_handle` (the scene's handles:

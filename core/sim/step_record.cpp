@@ -50,6 +50,14 @@ std::string to_json_line(const StepRecord& r) {
   }
   if (r.friction_contacts) line["friction_contacts"] = *r.friction_contacts;
   if (r.max_stretch) line["max_stretch"] = *r.max_stretch;
+  if (r.motion) {
+    const MotionRecord& m = *r.motion;
+    line["motion"] = {
+        {"kinetic_energy", m.kinetic_energy},
+        {"center_of_mass", {m.center_of_mass.x(), m.center_of_mass.y(), m.center_of_mass.z()}},
+        {"continuity_error", m.continuity_error},
+        {"continuity", m.continuity}};
+  }
   return line.dump();
 }
 

@@ -4,11 +4,28 @@
 #include <string>
 #include <vector>
 
+#include "common/types.hpp"
 #include "contact/contact_stats.hpp"
 #include "problem/term_stats.hpp"
 #include "solve/newton_solver.hpp"
 
 namespace progsim {
+
+/// A dynamic step's motion and how continuous it is in time (PD Figs. 18–19; PD++'s metrics as
+/// VPD App. C describes them).
+struct MotionRecord {
+  double kinetic_energy = 0.0;         ///< ½ vᵀ M v after the step (J), level masses
+  Vec3 center_of_mass = Vec3::Zero();  ///< Σ m x / Σ m after the step (m)
+  /// VPD App. C eq. 17: ‖xᵗ − x̃ᵗ‖_M (m, mass-weighted RMS over the free DOFs), x̃ᵗ the
+  /// midpoint estimate of the step's start from its neighbours by implicit Euler as a boundary
+  /// value problem, x̃ᵗ = ½(xᵗ⁻¹ + xᵗ⁺¹ − h² M⁻¹ f(xᵗ⁺¹)), with the forces f read from the solve
+  /// (h² M⁻¹ f = xᵗ⁺¹ − x̂ − h² M⁻¹ ∇E, x̂ the prediction the step used).
+  double continuity_error = 0.0;
+  /// eq. 18: continuity_error over the solve's own residual ½h²‖M⁻¹∇E‖_M, floored at the residual
+  /// the Newton tolerance allows (½ h ε ℓ): dimensionless, ≤ 1 for implicit Euler on the level
+  /// alone, larger where the prediction jumps.
+  double continuity = 0.0;
+};
 
 /// Report of one step: solver outcome, per-term counters for this step only, wall time.
 struct StepRecord {
@@ -43,6 +60,8 @@ struct StepRecord {
   /// Faces whose strain limit is still raised after a refinement that left them beyond it
   /// (StrainLimit::fit_limits); 0 once every face's own limit holds.
   int raised_limits = 0;
+  /// Dynamic scenes: the motion after the step.
+  std::optional<MotionRecord> motion;
 };
 
 /// One line of JSON describing the record (for logs: `steps.jsonl`).
