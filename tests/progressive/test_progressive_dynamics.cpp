@@ -335,3 +335,32 @@ TEST(ProgressiveDynamics, LevelsBounceTheBallAlikeWhereDirectSimulationsDiverge)
   EXPECT_LT(pd_max, bound);
   EXPECT_GT(direct_max, 5.0 * bound);  // else the scene would be too easy to show anything
 }
+
+TEST(ProgressiveDynamics, TheConsistencyPenaltyPullsALevelTowardTheCoarserOneOnlyWhenAskedFor) {
+  // VPD eq. 4: with w > 0 the finer level's frames come nearer the coarser ones (eq. 19); with
+  // w = 0 the term is not built, and no counter of it exists on either path.
+  const int steps = 20;
+  auto run = [&](double weight) {
+    Scene scene = swinging_cloth(steps);
+    scene.progressive.level_vertices = {60};
+    scene.progressive.consistency_weight = weight;
+    ProgressiveDynamics pd(scene);
+    for (int n = 0; n < steps; ++n) pd.step_preview();
+    pd.refine();
+    const DynamicLevelRecord& fine = pd.record(1);
+    double mean = 0.0;
+    for (const DynamicStepRecord& r : fine.steps) mean += r.consistency / steps;
+    int penalty_gradients = -1;
+    for (const TermStats& t : fine.terms)
+      if (t.name == "consistency_penalty") penalty_gradients = int(t.gradient_evaluations);
+    for (const TermStats& t : pd.record(0).terms) EXPECT_NE(t.name, "consistency_penalty");
+    return std::make_pair(mean, penalty_gradients);
+  };
+  const auto [free, free_counter] = run(0.0);
+  const auto [pulled, pulled_counter] = run(1.0);
+  std::cout << "mean consistency (eq. 19) of level 1: w = 0 " << free << " m, w = 1 " << pulled
+            << " m\n";
+  EXPECT_EQ(free_counter, -1);  // not built
+  EXPECT_GT(pulled_counter, 0);
+  EXPECT_LT(pulled, 0.7 * free);
+}

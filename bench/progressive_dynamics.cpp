@@ -1,0 +1,164 @@
+// What Progressive Dynamics buys on an animation (issue 29's benchmark; PD §5.2 reports preview
+// speed-ups of 21–75× against direct fine simulation): in one run, the preview (level 0 with
+// the proxy energy), every refined level, a direct simulation of the coarsest level and of the
+// finest, each over the same steps. Prints a table and writes CSV: wall time, time per step,
+// Newton iterations per step and peak resident memory per phase, then the ratios.
+// Long at 35K vertices (hours): not run in CI.
+//
+// usage: bench_progressive_dynamics [--direct-time-ratio=R] [scene.json] [csv_path] [factor]
+//        scene: a dynamic scene with a "progressive" section whose body is a generated "grid"
+//        (default bench/scenes/pd_drape.json); factor multiplies its cell counts (default 1;
+//        4.6 gives the 34.6K-vertex drape).
+//        --direct-time-ratio=R: stop the direct finest simulation once it has taken R times the
+//        preview's time (default 200); its time over all steps is then extrapolated from its
+//        mean step, and the preview speed-up is marked as a bound.
+#include "progressive/progressive_dynamics.hpp"
+
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "bench_main.hpp"
+#include "common/timer.hpp"
+#include "scaled_scene.hpp"
+
+using namespace progsim;
+
+namespace {
+
+/// One phase of the run: a level animated progressively or directly.
+struct Phase {
+  std::string name;
+  int vertices = 0;
+  int steps = 0;         ///< steps taken
+  double seconds = 0.0;  ///< wall time of the steps taken
+  int newton_iterations = 0;
+  double peak_mib = 0.0;  ///< peak resident memory during the phase (MiB)
+  bool finished = true;   ///< every step taken (false: stopped by the time ratio)
+};
+
+/// Resets the kernel's peak-RSS counter (Linux: writing 5 to clear_refs resets VmHWM).
+void reset_peak_memory() {
+  std::ofstream("/proc/self/clear_refs") << "5";
+}
+
+/// Peak resident memory since the last reset (MiB), from /proc/self/status.
+double peak_memory_mib() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  double kib = 0.0;
+  while (status >> key) {
+    if (key == "VmHWM:") {
+      status >> kib;
+      break;
+    }
+    status.ignore(1 << 12, '\n');
+  }
+  return kib / 1024.0;
+}
+
+/// A direct simulation of `level` (the level's own energy; the finest: the scene's mesh) for at
+/// most `steps` steps or until `time_limit` seconds have passed.
+Phase direct_phase(const Scene& scene, std::shared_ptr<const MeshHierarchy> hierarchy, int level,
+                   int steps, double time_limit) {
+  reset_peak_memory();
+  LevelSimulation sim(scene, SimulationLevel{hierarchy, level, {}});
+  Phase p{"direct level " + std::to_string(level), sim.model().rest.num_vertices()};
+  Timer timer;
+  for (; p.steps < steps && timer.seconds() < time_limit; ++p.steps)
+    p.newton_iterations += sim.step().newton.iterations;
+  p.seconds = timer.seconds();
+  p.finished = p.steps == steps;
+  p.peak_mib = peak_memory_mib();
+  std::fprintf(stderr, "%s: %d steps in %.1f s\n", p.name.c_str(), p.steps, p.seconds);
+  return p;
+}
+
+/// The preview over `steps` steps.
+Phase preview_phase(ProgressiveDynamics& pd, int steps) {
+  reset_peak_memory();
+  for (int n = 0; n < steps; ++n) pd.step_preview();
+  const DynamicLevelRecord& r = pd.record(0);
+  Phase p{"PD preview (level 0)", r.vertices, steps, r.seconds, r.newton_iterations};
+  p.peak_mib = peak_memory_mib();
+  std::fprintf(stderr, "%s: %.1f s\n", p.name.c_str(), p.seconds);
+  return p;
+}
+
+/// The next level refined over the previewed steps.
+Phase refine_phase(ProgressiveDynamics& pd) {
+  reset_peak_memory();
+  pd.refine([](int done, int total) {
+    std::fprintf(stderr, "\rrefining: step %d/%d", done, total);
+    return true;
+  });
+  const DynamicLevelRecord& r = pd.record(pd.level());
+  Phase p{"PD level " + std::to_string(pd.level()), r.vertices, static_cast<int>(r.steps.size()),
+          r.seconds, r.newton_iterations};
+  p.peak_mib = peak_memory_mib();
+  std::fprintf(stderr, "\n%s: %.1f s\n", p.name.c_str(), p.seconds);
+  return p;
+}
+
+double per_step(const Phase& p) {
+  return p.steps > 0 ? p.seconds / p.steps : 0.0;
+}
+
+void print_and_write(const std::vector<Phase>& phases, std::ofstream& csv) {
+  std::printf("%-22s %8s %6s %10s %10s %8s %9s %s\n", "phase", "vertices", "steps", "seconds",
+              "s/step", "newton/s", "peak MiB", "finished");
+  csv << "phase,vertices,steps,seconds,seconds_per_step,newton_per_step,peak_mib,finished\n";
+  for (const Phase& p : phases) {
+    const double its = p.steps > 0 ? double(p.newton_iterations) / p.steps : 0.0;
+    std::printf("%-22s %8d %6d %10.2f %10.4f %8.1f %9.1f %s\n", p.name.c_str(), p.vertices, p.steps,
+                p.seconds, per_step(p), its, p.peak_mib, p.finished ? "yes" : "no");
+    csv << p.name << ',' << p.vertices << ',' << p.steps << ',' << p.seconds << ',' << per_step(p)
+        << ',' << its << ',' << p.peak_mib << ',' << p.finished << '\n';
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const char* usage =
+      "bench_progressive_dynamics [--direct-time-ratio=R] [scene.json] [csv_path] [factor]";
+  return bench::guarded_main(argc, argv, usage, [](int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    double ratio = 200.0;
+    if (!args.empty() && args[0].rfind("--direct-time-ratio=", 0) == 0) {
+      ratio = std::stod(args[0].substr(20));
+      args.erase(args.begin());
+    }
+    const std::string path =
+        args.size() > 0 ? args[0] : std::string(PROGSIM_SOURCE_DIR) + "/bench/scenes/pd_drape.json";
+    const std::string csv_path = args.size() > 1 ? args[1] : "progressive_dynamics.csv";
+    const double factor = args.size() > 2 ? std::stod(args[2]) : 1.0;
+    std::ofstream csv = bench::open_csv(csv_path);
+    const Scene scene = scaled_scene(path, factor);
+    const int steps = scene.num_steps();
+    ProgressiveDynamics pd(scene);
+    std::vector<Phase> phases{preview_phase(pd, steps)};
+    while (pd.level() < pd.finest()) phases.push_back(refine_phase(pd));
+    const double preview = phases[0].seconds;
+    phases.push_back(direct_phase(scene, pd.shared_hierarchy(), 0, steps, 1e30));
+    phases.push_back(
+        direct_phase(scene, pd.shared_hierarchy(), pd.finest(), steps, ratio * preview));
+    print_and_write(phases, csv);
+    const Phase& direct_finest = phases.back();
+    const Phase& direct_coarsest = phases[phases.size() - 2];
+    const Phase& pd_finest = phases[phases.size() - 3];
+    const double direct_total = per_step(direct_finest) * steps;  // extrapolated if stopped
+    std::printf("\npreview against direct finest:   %.1fx%s\n", direct_total / preview,
+                direct_finest.finished ? ""
+                                       : " (direct stopped early: extrapolated from its mean "
+                                         "step, its first steps before contact are cheapest)");
+    std::printf("preview against direct coarsest: %.2fx its time\n",
+                preview / direct_coarsest.seconds);
+    std::printf("PD finest step against direct finest step: %.2fx\n",
+                per_step(pd_finest) / per_step(direct_finest));
+    return 0;
+  });
+}
