@@ -93,6 +93,7 @@ class ProgressiveDynamics {
   int level() const { return static_cast<int>(trajectories_.size()) - 1; }
   int finest() const { return hierarchy_->finest(); }
   const MeshHierarchy& hierarchy() const { return *hierarchy_; }
+  std::shared_ptr<const MeshHierarchy> shared_hierarchy() const { return hierarchy_; }
   const Scene& scene() const { return scene_; }
   /// Frames of level `level` (steps + 1: frame 0 is the initial state). Throws
   /// Error(out_of_range) for a level that does not exist or has not been computed.
