@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 11
+#define PS_VERSION_MINOR 12
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -108,7 +108,8 @@ PS_API const char* ps_last_error(void);
 /**
  * Progress of long calls: called after each unit of work with done/total units and the
  * phase ("decimation" and "expansion coloring" while a hierarchy is built, in percent;
- * "preview" for ps_sim_step_preview(), in steps; refinement will report "refine"). Return 0
+ * "preview" for ps_sim_step_preview(), in steps; "refine" for ps_sim_refine(): in steps of the
+ * finer level for a progressive animation, else 0 of 1 then 1 of 1). Return 0
  * to continue, non-zero to cancel: the call then returns PS_ERROR_CANCELLED (also when the
  * last unit was done), keeping the state of the last completed step. The callback must not
  * call the simulation that is running (such calls return PS_ERROR_WRONG_CALL_ORDER); other
@@ -240,6 +241,23 @@ typedef enum ps_mode {
   PS_MODE_FORCE32 = 0x7fffffff
 } ps_mode;
 
+/** How a finer level of a progressive animation (PS_SIM_PROGRESSIVE_DYNAMICS) predicts each
+ *  step, the x̂ of its incremental potential, from the coarser level's trajectory (x_l^t, v_l^t
+ *  the coarser frame t, U the intrinsic part of the prolongation P); scene key
+ *  "progressive.prediction". */
+typedef enum ps_prediction {
+  /** PD++'s velocity-only prolongation (the default): x̂ = x_{l+1}^t + h U v_l^t, the level's
+   *  own positions moved by the coarser velocity; temporally smooth. */
+  PS_PREDICTION_VELOCITY_ONLY = 0,
+  /** PD eq. 5: x̂ = P(x_l^t) + h U v_l^t; resets the fine positions toward the coarse ones every
+   *  step (closer to the preview, can jump between frames). */
+  PS_PREDICTION_PROLONGED_POSITIONS = 1,
+  /** PSQ per frame, for comparison: x̂ = P(x_l^{t+1}), each step a relaxation toward the
+   *  prolonged coarser frame with no inertia of its own. */
+  PS_PREDICTION_PER_FRAME = 2,
+  PS_PREDICTION_FORCE32 = 0x7fffffff
+} ps_prediction;
+
 /** Physical effects; only enabled effects cost anything. Combine with |. */
 typedef enum ps_effect {
   PS_EFFECT_MEMBRANE = 1 << 0,     /**< Neo-Hookean membrane stretching */
@@ -265,14 +283,14 @@ typedef struct ps_sim_def {
   /** Pa, [0, 1e13]; default 0: the bending term's own Young's modulus, 0 for
    *  material_youngs_modulus (cloth often bends stiffer or softer than it stretches) */
   double material_bending_youngs_modulus;
-  double material_poisson_ratio;        /**< 1, (−1, 0.5); default 0.3 */
-  double material_thickness;            /**< m, (0, 10]; default 1e-3 */
-  double material_density;              /**< kg/m³, (0, 1e6]; default 200 */
-  double material_friction;             /**< Coulomb μ, [0, 10]; default 0 (frictionless) */
-  double material_strain_limit;         /**< max stretch, 0 (none) or (1, 100]; default 0 */
-  double contact_dhat;                  /**< m, activation gap, (0, 10]; default 1e-3 */
-  double contact_stiffness;             /**< N/m³, [0, 1e30]; default 0 (adaptive) */
-  double contact_friction_velocity;     /**< m/s, (0, 1e3]; default 1e-3 */
+  double material_poisson_ratio;    /**< 1, (−1, 0.5); default 0.3 */
+  double material_thickness;        /**< m, (0, 10]; default 1e-3 */
+  double material_density;          /**< kg/m³, (0, 1e6]; default 200 */
+  double material_friction;         /**< Coulomb μ, [0, 10]; default 0 (frictionless) */
+  double material_strain_limit;     /**< max stretch, 0 (none) or (1, 100]; default 0 */
+  double contact_dhat;              /**< m, activation gap, (0, 10]; default 1e-3 */
+  double contact_stiffness;         /**< N/m³, [0, 1e30]; default 0 (adaptive) */
+  double contact_friction_velocity; /**< m/s, (0, 1e3]; default 1e-3 */
   /** 0 (default) or 1: a progressive simulation may start from a finest rest shape that
    *  crosses itself (`progsim params`); 0 refuses it with PS_ERROR_INTERSECTING */
   int32_t contact_crossing_start;
@@ -282,7 +300,13 @@ typedef struct ps_sim_def {
   int32_t solver_max_cg_iterations;
   /** 1 (default) or 0: line-search extrapolation of whole Newton steps (`progsim params`) */
   int32_t solver_line_search_extrapolation;
-  ps_mode mode;      /**< default PS_MODE_DYNAMIC */
+  /** 1, [0, 1e12]; default 0 (no penalty): a progressive animation's consistency penalty
+   *  w/(2h²)‖x − P(x_coarser)‖²_M pulling each finer level toward the prolonged coarser frame
+   *  (VPD eq. 4, from PD++; w = 1 weighs it like the inertia) */
+  double progressive_consistency_weight;
+  ps_mode mode; /**< default PS_MODE_DYNAMIC */
+  /** a progressive animation's prediction; default PS_PREDICTION_VELOCITY_ONLY */
+  ps_prediction prediction;
   uint32_t effects;  /**< ps_effect bits; default membrane|bending|gravity */
   double gravity[3]; /**< m/s²; default (0, −9.81, 0) */
   double pressure;   /**< Pa, needs PS_EFFECT_PRESSURE; default 0 */
@@ -297,21 +321,26 @@ PS_API void ps_sim_def_init(ps_sim_def* def);
 
 /**
  * Creates a simulation of `hierarchy` (borrowed: it must outlive the simulation) as
- * described by `def` (nullable: defaults). Starts at level 0 at rest.
+ * described by `def` (nullable: defaults). Starts at level 0 at rest. Its kind follows from
+ * the hierarchy and the mode (see ps_sim_kind): one level gives a direct simulation; several
+ * levels give Progressive Dynamics in PS_MODE_DYNAMIC (the default: a progressive animation)
+ * and PSQ in PS_MODE_QUASISTATIC. On several levels the pinned vertices must be the
+ * hierarchy's (ps_hierarchy_def.pinned_vertices; otherwise PS_ERROR_INVALID_ARGUMENT).
  * @param out receives the simulation; caller owns, destroy with ps_sim_destroy().
  * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_INVALID_ARGUMENT (a parameter NaN or out of
- * its range, naming it), PS_ERROR_INVALID_SCENE (a pinned vertex out of range; quasistatic, a
- * body that gravity or pressure on an open surface pulls with no pin, no ground or obstacle
- * under contact and no proximal term to hold it, naming it), PS_ERROR_NULL_ARGUMENT. On a
- * multi-level hierarchy the simulation is progressive (PSQ): quasistatic only (PS_MODE_DYNAMIC:
- * PS_ERROR_UNSUPPORTED), and its pinned vertices must be the hierarchy's
- * (ps_hierarchy_def.pinned_vertices; otherwise PS_ERROR_INVALID_ARGUMENT).
+ * its range, a prediction that is not a ps_prediction, naming it), PS_ERROR_INVALID_SCENE (a
+ * pinned vertex out of range; quasistatic, a body that gravity or pressure on an open surface
+ * pulls with no pin, no ground or obstacle under contact and no proximal term to hold it,
+ * naming it), PS_ERROR_NULL_ARGUMENT.
  */
 PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* def, ps_sim** out);
 
 /**
  * Creates a simulation from a JSON scene (format: scenes/README.md). Its bodies' meshes form
- * the hierarchy, which the simulation owns (see ps_sim_hierarchy()).
+ * the hierarchy, which the simulation owns (see ps_sim_hierarchy()). A dynamic scene with a
+ * "progressive" section of coarse levels gives a progressive animation (Progressive Dynamics;
+ * its "prediction" and "consistency_weight" apply), a quasistatic one PSQ, a scene without
+ * coarse levels a direct simulation.
  * @param json     NUL-terminated scene text. Borrowed during the call.
  * @param base_dir Nullable: directory that relative mesh paths in the scene start from
  *                 (NULL: the current directory).
@@ -335,16 +364,34 @@ PS_API const char* ps_sim_last_error(const ps_sim* sim);
  *  store their error message in it, so it belongs to the thread that uses the simulation. */
 PS_API int32_t ps_sim_hierarchy(const ps_sim* sim, const ps_hierarchy** out);
 
+/** What drives a simulation; it follows from the hierarchy's levels and the mode at creation
+ *  and does not change. */
+typedef enum ps_sim_kind {
+  PS_SIM_DIRECT = 0, /**< one level: implicit Euler or quasistatic load steps on the mesh */
+  PS_SIM_PSQ = 1,    /**< several levels, quasistatic: Progressive Shell Quasistatics */
+  /** several levels, dynamic: Progressive Dynamics, a progressive animation (frames per level,
+   *  see "progressive animation" below) */
+  PS_SIM_PROGRESSIVE_DYNAMICS = 2,
+  PS_SIM_KIND_FORCE32 = 0x7fffffff
+} ps_sim_kind;
+
+/** The simulation's kind (a ps_sim_kind) into *out. */
+PS_API int32_t ps_sim_get_kind(const ps_sim* sim, int32_t* out);
+
 /** Installs (or with fn = NULL removes) the progress callback. user_data is passed back
  *  unchanged (borrowed; the caller keeps it alive while installed). */
 PS_API int32_t ps_sim_set_progress_callback(ps_sim* sim, ps_progress_fn fn, void* user_data);
 
 /**
  * Sets a numeric parameter by name between steps: any parameter-table name
- * ("material.youngs_modulus", "simulation.time_step", "solver.newton_tolerance", ...) or
- * "gravity.x", "gravity.y", "gravity.z" (m/s²), "pressure" (Pa, all bodies).
+ * ("material.youngs_modulus", "simulation.time_step", "solver.newton_tolerance",
+ * "progressive.consistency_weight", ...) or "gravity.x", "gravity.y", "gravity.z" (m/s²),
+ * "pressure" (Pa, all bodies).
  * Errors: PS_ERROR_INVALID_ARGUMENT for an unknown name (the message lists the known ones)
  * or a value outside the parameter's range (NaN included); the simulation is unchanged.
+ * A progressive animation takes a change for its preview only: PS_ERROR_WRONG_CALL_ORDER once
+ * a finer level has been computed (ps_sim_restart() first), PS_ERROR_INVALID_ARGUMENT for
+ * "simulation.time_step" (fixed within an animation).
  */
 PS_API int32_t ps_sim_set_param(ps_sim* sim, const char* name, double value);
 
@@ -379,6 +426,16 @@ PS_API int32_t ps_sim_set_mode(ps_sim* sim, int32_t mode);
 /** The stepping mode (a ps_mode) into *out. */
 PS_API int32_t ps_sim_get_mode(const ps_sim* sim, int32_t* out);
 
+/** Sets how a progressive animation's finer levels predict their steps (a ps_prediction), as
+ *  ps_sim_set_param() sets numbers: refine() uses it from then on. Any kind of simulation
+ *  stores it. Errors: PS_ERROR_INVALID_ARGUMENT (not a ps_prediction); on a progressive
+ *  animation PS_ERROR_WRONG_CALL_ORDER once a finer level has been computed
+ *  (ps_sim_restart() first). */
+PS_API int32_t ps_sim_set_prediction(ps_sim* sim, int32_t prediction);
+
+/** The prediction (a ps_prediction) into *out. */
+PS_API int32_t ps_sim_get_prediction(const ps_sim* sim, int32_t* out);
+
 /** Enables or disables one effect (a ps_effect bit) between steps. */
 PS_API int32_t ps_sim_set_effect(ps_sim* sim, uint32_t effect, int32_t enabled);
 
@@ -403,9 +460,13 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
 /**
  * Advances `steps` steps at the current level (the preview while it is not the finest).
  * Newton trouble does not fail the call: see the stats. Progress phase "preview".
+ * A progressive animation animates its coarsest level, level 0 (PD eq. 4: each step solved to
+ * the tolerance), appending one frame per step; once a finer level has been computed the
+ * preview is closed (PS_ERROR_WRONG_CALL_ORDER, nothing changed) until ps_sim_restart().
  * Errors: PS_ERROR_INVALID_ARGUMENT (steps < 1), PS_ERROR_CANCELLED, PS_ERROR_NUMERICAL
  * (a step produced non-finite positions; the simulation keeps that step's state, so reading
- * positions shows the failure, and should be destroyed or its parameters changed).
+ * positions shows the failure, and should be destroyed or its parameters changed),
+ * PS_ERROR_WRONG_CALL_ORDER (above).
  */
 PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps);
 
@@ -418,9 +479,15 @@ PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps);
  * as far as additive CCD allows, so it never starts intersecting even where the prolonged state
  * does; contact offsets and strain limits the start does not meet are relaxed to fit and
  * restored by the following solves. Progress phase "refine".
+ * A progressive animation instead animates level l + 1 over every previewed step (PD eqs. 5–6,
+ * Algorithm 1): its frame 0 is its rest shape with the prolonged initial velocities, and each
+ * step's x̂ comes from level l's frames (ps_prediction) with the optional consistency penalty
+ * (progressive_consistency_weight). Progress phase "refine" after each step (done, total = the
+ * previewed steps); cancelling discards the level.
  * Errors (the state is unchanged): PS_ERROR_OUT_OF_RANGE at the finest level;
  * PS_ERROR_INTERSECTING when no safe position is found for a split;
- * PS_ERROR_NUMERICAL when the refined state has no finite energy.
+ * PS_ERROR_NUMERICAL when the refined state has no finite energy; progressive animation:
+ * PS_ERROR_WRONG_CALL_ORDER before any preview step, PS_ERROR_CANCELLED.
  */
 PS_API int32_t ps_sim_refine(ps_sim* sim);
 
@@ -428,19 +495,23 @@ PS_API int32_t ps_sim_refine(ps_sim* sim);
  * Solves again at the current time and loads until the level is at equilibrium (a Newton
  * solve meets the tolerance with every face under its own strain limit) or `max_solves` solves
  * were made: after a refinement or a parameter change. *equilibrium (nullable) receives 1 if
- * reached, else 0. Progress phase "settle". Errors: PS_ERROR_INVALID_ARGUMENT (max_solves < 1),
+ * reached, else 0. Progress phase "settle". Errors: PS_ERROR_INVALID_ARGUMENT (max_solves < 1,
+ * or a progressive animation, whose levels are animations, not equilibria),
  * PS_ERROR_CANCELLED, PS_ERROR_NUMERICAL.
  */
 PS_API int32_t ps_sim_settle(ps_sim* sim, int32_t max_solves, int32_t* equilibrium);
 
-/** The current level into *out (0 = coarsest). */
+/** The current level into *out (0 = coarsest); for a progressive animation the finest level
+ *  computed so far. */
 PS_API int32_t ps_sim_current_level(const ps_sim* sim, int32_t* out);
 
 /**
  * Positions of a level, (n × 3) doubles, into out[capacity]; *count = 3n. out is nullable
  * (size query). The current level gives the current state; a coarser level its state when
- * it was refined; a finer level the current state prolonged to it.
- * Errors: PS_ERROR_OUT_OF_RANGE, PS_ERROR_BUFFER_TOO_SMALL.
+ * it was refined; a finer level the current state prolonged to it. A progressive animation
+ * gives a computed level's last frame (ps_sim_get_frame_positions()).
+ * Errors: PS_ERROR_OUT_OF_RANGE (a level that does not exist; progressive animation: one not
+ * computed yet), PS_ERROR_BUFFER_TOO_SMALL.
  */
 PS_API int32_t ps_sim_get_positions(const ps_sim* sim, int32_t level, double* out, size_t capacity,
                                     size_t* count);
@@ -521,8 +592,95 @@ typedef struct ps_level_stats {
   ps_strain_correction_stats strain_correction;
 } ps_level_stats;
 
-/** Statistics of `level` into *out. Levels not visited yet report zeros (NaN errors). */
+/** Statistics of `level` into *out. Levels not visited yet report zeros (NaN errors).
+ *  Errors: PS_ERROR_OUT_OF_RANGE; PS_ERROR_INVALID_ARGUMENT for a progressive animation (see
+ *  ps_sim_get_dynamic_level_stats()). */
 PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level_stats* out);
+
+/* ------------------------------------------------------- progressive animation --------- */
+/*
+ * A progressive animation (PS_SIM_PROGRESSIVE_DYNAMICS; Progressive Dynamics, Zhang, James and
+ * Kaufman 2024, with PD++'s continuity): ps_sim_step_preview() animates level 0 frame by
+ * frame; ps_sim_refine() then animates level 1, 2, ... over the same span, each from the
+ * coarser level's frames. Frame 0 of a level is its initial state, frame k its state after
+ * step k (time k·h); every computed level has as many frames as the preview. Frames are kept
+ * on disk (temporary files), so memory does not grow with the number of steps. The calls below
+ * give PS_ERROR_INVALID_ARGUMENT, naming the kind, on the other kinds of simulation.
+ */
+
+/** Number of frames of a computed level (previewed steps + 1) into *out.
+ *  Errors: PS_ERROR_OUT_OF_RANGE (a level that does not exist or has not been computed). */
+PS_API int32_t ps_sim_num_frames(const ps_sim* sim, int32_t level, int32_t* out);
+
+/**
+ * Positions of frame `frame` (0 to ps_sim_num_frames() − 1) of a computed level, (n × 3)
+ * doubles, m, into out[capacity]; *count = 3n with n the level's vertex count. out is nullable
+ * (size query). Errors: PS_ERROR_OUT_OF_RANGE (a level or frame not computed),
+ * PS_ERROR_BUFFER_TOO_SMALL, PS_ERROR_IO (the frame file cannot be read).
+ */
+PS_API int32_t ps_sim_get_frame_positions(const ps_sim* sim, int32_t level, int32_t frame,
+                                          double* out, size_t capacity, size_t* count);
+
+/** Velocities of a frame, (n × 3) doubles, m/s; as ps_sim_get_frame_positions(). */
+PS_API int32_t ps_sim_get_frame_velocities(const ps_sim* sim, int32_t level, int32_t frame,
+                                           double* out, size_t capacity, size_t* count);
+
+/**
+ * Sets the preview's initial velocities, (n_0 × 3) doubles, m/s (count = 3 n_0, n_0 level 0's
+ * vertex count; copied), before its first step; frame 0 of level 0 changes with them and finer
+ * levels start from their prolongation. Errors (nothing changed): PS_ERROR_INVALID_ARGUMENT (a
+ * wrong count or a NaN/Inf entry), PS_ERROR_WRONG_CALL_ORDER (after a preview step: restart
+ * first), PS_ERROR_NULL_ARGUMENT.
+ */
+PS_API int32_t ps_sim_set_preview_velocities(ps_sim* sim, const double* velocities, size_t count);
+
+/** Discards every level's frames and starts the preview again at rest from the current
+ *  parameters (after ps_sim_set_param() and the like, to preview a variation). Initial
+ *  velocities set before are discarded too. */
+PS_API int32_t ps_sim_restart(ps_sim* sim);
+
+/** One step of one level of a progressive animation: what produced frame `step`. */
+typedef struct ps_step_stats {
+  int32_t step;              /**< 1-based: the step from frame step − 1 to frame step */
+  int32_t newton_iterations; /**< this step's Newton iterations */
+  int32_t converged;         /**< 1 if the step's Newton solve met the tolerance */
+  double time;               /**< simulated time after the step, s */
+  double seconds;            /**< wall time of the step, s */
+  double kinetic_energy;     /**< ½ vᵀ M v after the step, J (the level's masses) */
+  double center_of_mass[3];  /**< Σ m x / Σ m after the step, m */
+  /** ‖CoM − CoM of the preview‖ at the same time, m (PD Fig. 19); 0 on level 0 */
+  double com_deviation;
+  /** VPD App. C eq. 18: continuity_error over the step's own solve residual, dimensionless
+   *  (≤ 1 for implicit Euler on the level alone, larger where the prediction jumps) */
+  double continuity;
+  /** VPD App. C eq. 17: ‖xᵗ − x̃ᵗ‖_M, m (mass-weighted RMS), x̃ᵗ the midpoint estimate of the
+   *  step's start from its neighbours */
+  double continuity_error;
+  /** VPD App. C eq. 19: mass-weighted RMS distance of the level, projected onto the coarser
+   *  level, to the coarser frame, m; 0 on level 0 */
+  double consistency;
+} ps_step_stats;
+
+/** Per-step statistics of a computed level, one ps_step_stats per step in order (steps 1 to
+ *  ps_sim_num_frames() − 1), into out[capacity]; *count = the number of steps. out is nullable
+ *  (size query). Errors: PS_ERROR_OUT_OF_RANGE, PS_ERROR_BUFFER_TOO_SMALL. */
+PS_API int32_t ps_sim_get_step_stats(const ps_sim* sim, int32_t level, ps_step_stats* out,
+                                     size_t capacity, size_t* count);
+
+/** One level of a progressive animation: its size and work. */
+typedef struct ps_dynamic_level_stats {
+  int32_t level;             /**< which level */
+  int32_t vertices;          /**< of the level's mesh */
+  int32_t steps;             /**< steps animated at this level */
+  int32_t newton_iterations; /**< over its steps */
+  int32_t converged_steps;   /**< steps whose Newton solve met the tolerance */
+  double seconds;            /**< wall time of its steps, s */
+} ps_dynamic_level_stats;
+
+/** Statistics of a computed level into *out. Errors: PS_ERROR_OUT_OF_RANGE (a level that does
+ *  not exist or has not been computed), PS_ERROR_NULL_ARGUMENT. */
+PS_API int32_t ps_sim_get_dynamic_level_stats(const ps_sim* sim, int32_t level,
+                                              ps_dynamic_level_stats* out);
 
 /* ------------------------------------------------------- accuracy vs time -------------- */
 

@@ -10,6 +10,7 @@
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "hierarchy/shell_prolongation.hpp"
 #include "mesh/triangle_mesh.hpp"
+#include "progressive/progressive_dynamics.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "progsim.h"
 #include "scene/scene.hpp"
@@ -26,11 +27,13 @@ struct ps_hierarchy {
   mutable std::string last_error;
 };
 
-/// A simulation: the progressive driver (a direct simulation on a single-level hierarchy).
+/// A simulation: exactly one driver is set. `simulation` is PSQ on several quasistatic levels
+/// (a direct simulation on a single-level hierarchy); `dynamics` animates several dynamic levels.
 struct ps_sim {
   const ps_hierarchy* hierarchy = nullptr;
   std::unique_ptr<ps_hierarchy> owned_hierarchy;  ///< set when created from a scene
   std::unique_ptr<progsim::ProgressiveSimulation> simulation;
+  std::unique_ptr<progsim::ProgressiveDynamics> dynamics;
   progsim::Scene scene;  ///< the scene as last set (parameters are edited here, then applied)
   bool busy = false;     ///< inside a long call (its progress callback may not call back)
   ps_progress_fn progress = nullptr;
@@ -56,6 +59,17 @@ inline void require_idle(const ps_sim* sim) {
     api_fail(PS_ERROR_WRONG_CALL_ORDER,
              "called from the progress callback of a running call on this simulation");
 }
+
+/// The sim's ps_sim_kind.
+ps_sim_kind sim_kind(const ps_sim& sim);
+
+/// The PSQ (or direct) driver; throws ApiError(PS_ERROR_INVALID_ARGUMENT) for a progressive
+/// animation, whose levels are animated by ProgressiveDynamics instead.
+ProgressiveSimulation& quasistatic_driver(const ps_sim& sim);
+
+/// The Progressive Dynamics driver; throws ApiError(PS_ERROR_INVALID_ARGUMENT) naming the
+/// sim's kind for any other simulation.
+ProgressiveDynamics& animation_driver(const ps_sim& sim);
 
 /// Marks sim busy for the lifetime of this guard.
 class BusyGuard {

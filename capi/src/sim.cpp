@@ -9,20 +9,30 @@
 namespace progsim::capi {
 namespace {
 
-/// The handle of a built simulation of `scene` on `hierarchy`, at the coarsest level.
-std::unique_ptr<ps_sim> wrap(const ps_hierarchy* hierarchy, Scene scene,
-                             std::unique_ptr<ProgressiveSimulation> simulation) {
+/// A dynamic scene on several levels is a progressive animation (Progressive Dynamics).
+bool animated_progressively(const Scene& scene, int num_levels) {
+  return num_levels > 1 && scene.mode == StepMode::dynamic;
+}
+
+/// The handle of a simulation of `scene` at the coarsest level, its driver built on `hierarchy`
+/// (nullptr: the driver builds it from the scene's bodies); the caller sets its hierarchy.
+std::unique_ptr<ps_sim> build_sim(Scene scene, std::shared_ptr<const MeshHierarchy> hierarchy) {
   auto sim = std::make_unique<ps_sim>();
-  sim->hierarchy = hierarchy;
+  const int levels =
+      hierarchy ? hierarchy->num_levels() : scene.progressive.num_coarse_levels() + 1;
+  if (animated_progressively(scene, levels)) {
+    sim->dynamics = std::make_unique<ProgressiveDynamics>(scene, std::move(hierarchy));
+  } else {
+    sim->simulation = std::make_unique<ProgressiveSimulation>(scene, std::move(hierarchy));
+  }
   sim->scene = std::move(scene);
-  sim->simulation = std::move(simulation);
   return sim;
 }
 
 /// A simulation of scene on hierarchy (borrowed and counted as in use).
 std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
-  auto simulation = std::make_unique<ProgressiveSimulation>(scene, hierarchy->shared);
-  auto sim = wrap(hierarchy, std::move(scene), std::move(simulation));
+  auto sim = build_sim(std::move(scene), hierarchy->shared);
+  sim->hierarchy = hierarchy;
   ++hierarchy->simulations;  // last: nothing below can throw
   sim->counts_as_user = true;
   return sim;
@@ -31,10 +41,10 @@ std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
 /// A simulation of a parsed scene that owns the hierarchy of its merged bodies (the levels
 /// its "progressive" section asks for).
 std::unique_ptr<ps_sim> sim_from_scene(Scene scene) {
-  auto simulation = std::make_unique<ProgressiveSimulation>(scene);
-  auto hierarchy = std::make_unique<ps_hierarchy>(simulation->shared_hierarchy());
-  auto sim = wrap(hierarchy.get(), std::move(scene), std::move(simulation));
-  sim->owned_hierarchy = std::move(hierarchy);
+  auto sim = build_sim(std::move(scene), nullptr);
+  sim->owned_hierarchy = std::make_unique<ps_hierarchy>(
+      sim->dynamics ? sim->dynamics->shared_hierarchy() : sim->simulation->shared_hierarchy());
+  sim->hierarchy = sim->owned_hierarchy.get();
   return sim;
 }
 
@@ -43,8 +53,23 @@ template <typename Edit>
 void edit_scene(ps_sim& sim, Edit&& edit) {
   Scene scene = sim.scene;
   edit(scene);
-  sim.simulation->update_scene(scene);
+  if (sim.dynamics)
+    sim.dynamics->update_scene(scene);
+  else
+    sim.simulation->update_scene(scene);
   sim.scene = std::move(scene);
+}
+
+const char* kind_name(ps_sim_kind kind) {
+  switch (kind) {
+    case PS_SIM_PSQ:
+      return "a progressive quasistatic simulation (PSQ)";
+    case PS_SIM_PROGRESSIVE_DYNAMICS:
+      return "a progressive animation (Progressive Dynamics: a dynamic simulation on several "
+             "levels)";
+    default:
+      return "a direct simulation (one level)";
+  }
 }
 
 Vec3 vec3_or(const double* v, const Vec3& fallback) {
@@ -52,6 +77,29 @@ Vec3 vec3_or(const double* v, const Vec3& fallback) {
 }
 
 }  // namespace
+
+ps_sim_kind sim_kind(const ps_sim& sim) {
+  if (sim.dynamics) return PS_SIM_PROGRESSIVE_DYNAMICS;
+  return sim.hierarchy->mesh_hierarchy.num_levels() > 1 ? PS_SIM_PSQ : PS_SIM_DIRECT;
+}
+
+ProgressiveSimulation& quasistatic_driver(const ps_sim& sim) {
+  if (!sim.simulation)
+    api_fail(PS_ERROR_INVALID_ARGUMENT,
+             std::string("this simulation is ") + kind_name(sim_kind(sim)) +
+                 ", whose levels are animations: the call applies to PSQ and direct simulations");
+  return *sim.simulation;
+}
+
+ProgressiveDynamics& animation_driver(const ps_sim& sim) {
+  if (!sim.dynamics)
+    api_fail(PS_ERROR_INVALID_ARGUMENT,
+             std::string("this simulation is ") + kind_name(sim_kind(sim)) +
+                 ": frames, initial velocities and restarts belong to a progressive animation "
+                 "(PS_MODE_DYNAMIC on a hierarchy of several levels)");
+  return *sim.dynamics;
+}
+
 }  // namespace progsim::capi
 
 using namespace progsim;
@@ -102,6 +150,14 @@ PS_API int32_t ps_sim_hierarchy(const ps_sim* sim, const ps_hierarchy** out) {
   });
 }
 
+PS_API int32_t ps_sim_get_kind(const ps_sim* sim, int32_t* out) {
+  return guarded(error_slot(sim), "ps_sim_get_kind", [&] {
+    require_idle(sim);
+    require(out, "out");
+    *out = sim_kind(*sim);
+  });
+}
+
 PS_API int32_t ps_sim_set_progress_callback(ps_sim* sim, ps_progress_fn fn, void* user_data) {
   return guarded(error_slot(sim), "ps_sim_set_progress_callback", [&] {
     require_idle(sim);
@@ -143,6 +199,22 @@ PS_API int32_t ps_sim_get_mode(const ps_sim* sim, int32_t* out) {
     require_idle(sim);
     require(out, "out");
     *out = sim->scene.mode == StepMode::dynamic ? PS_MODE_DYNAMIC : PS_MODE_QUASISTATIC;
+  });
+}
+
+PS_API int32_t ps_sim_set_prediction(ps_sim* sim, int32_t prediction) {
+  return guarded(error_slot(sim), "ps_sim_set_prediction", [&] {
+    require_idle(sim);
+    const DynamicsPrediction rule = prediction_from_enum(prediction);
+    edit_scene(*sim, [&](Scene& scene) { scene.progressive.prediction = rule; });
+  });
+}
+
+PS_API int32_t ps_sim_get_prediction(const ps_sim* sim, int32_t* out) {
+  return guarded(error_slot(sim), "ps_sim_get_prediction", [&] {
+    require_idle(sim);
+    require(out, "out");
+    *out = prediction_enum(sim->scene.progressive.prediction);
   });
 }
 

@@ -28,6 +28,31 @@ EffectSet effects_from_bits(uint32_t bits) {
   return effects;
 }
 
+ps_prediction prediction_enum(DynamicsPrediction rule) {
+  switch (rule) {
+    case DynamicsPrediction::prolonged_positions:
+      return PS_PREDICTION_PROLONGED_POSITIONS;
+    case DynamicsPrediction::per_frame:
+      return PS_PREDICTION_PER_FRAME;
+    default:
+      return PS_PREDICTION_VELOCITY_ONLY;
+  }
+}
+
+DynamicsPrediction prediction_from_enum(int32_t prediction) {
+  switch (prediction) {
+    case PS_PREDICTION_VELOCITY_ONLY:
+      return DynamicsPrediction::velocity_only;
+    case PS_PREDICTION_PROLONGED_POSITIONS:
+      return DynamicsPrediction::prolonged_positions;
+    case PS_PREDICTION_PER_FRAME:
+      return DynamicsPrediction::per_frame;
+    default:
+      api_fail(PS_ERROR_INVALID_ARGUMENT,
+               "prediction = " + std::to_string(prediction) + " is not a ps_prediction");
+  }
+}
+
 Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh) {
   require_initialized(def.internal_cookie, kSimCookie, "ps_sim_def");
   Scene scene;
@@ -41,6 +66,7 @@ Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh) {
   if (def.mode != PS_MODE_DYNAMIC && def.mode != PS_MODE_QUASISTATIC)
     api_fail(PS_ERROR_INVALID_ARGUMENT, "mode = " + std::to_string(def.mode) + " is not a ps_mode");
   scene.mode = def.mode == PS_MODE_DYNAMIC ? StepMode::dynamic : StepMode::quasistatic;
+  scene.progressive.prediction = prediction_from_enum(def.prediction);
   scene.effects = effects_from_bits(def.effects);
   scene.gravity = Vec3(def.gravity[0], def.gravity[1], def.gravity[2]);
   set_scene_parameter(scene, "pressure", def.pressure);
@@ -62,6 +88,7 @@ extern "C" PS_API void ps_sim_def_init(ps_sim_def* def) {
 #include "scene/parameters.def"
 #undef PROGSIM_PARAMETER
   def->mode = PS_MODE_DYNAMIC;
+  def->prediction = PS_PREDICTION_VELOCITY_ONLY;
   def->effects = PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_GRAVITY;
   def->gravity[1] = -9.81;
   def->internal_cookie = progsim::capi::kSimCookie;

@@ -9,6 +9,11 @@ namespace progsim::capi {
 /// Throws ApiError(PS_ERROR_UNINITIALIZED_DEF) for a def not filled by ps_sim_def_init().
 Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh);
 
+/// The ps_prediction of a prediction rule, and back (ApiError(PS_ERROR_INVALID_ARGUMENT) for a
+/// value that is not a ps_prediction).
+ps_prediction prediction_enum(DynamicsPrediction rule);
+DynamicsPrediction prediction_from_enum(int32_t prediction);
+
 /// The ps_effect bits of an effect set, and back.
 uint32_t effect_bits(const EffectSet& effects);
 EffectSet effects_from_bits(uint32_t bits);

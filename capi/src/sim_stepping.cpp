@@ -7,15 +7,35 @@
 namespace progsim::capi {
 namespace {
 
-/// Positions of a level (see ProgressiveSimulation::positions), range-checked first.
+/// Positions of a level, range-checked first: see ProgressiveSimulation::positions, or a
+/// progressive animation's last frame of the level.
 Positions level_positions(const ps_sim& sim, int32_t level) {
   level_mesh(*sim.hierarchy, level);  // range check with the ABI's message
-  return sim.simulation->positions(level);
+  if (!sim.dynamics) return sim.simulation->positions(level);
+  Positions positions, velocities;
+  sim.dynamics->read_frame(level, sim.dynamics->num_frames(level) - 1, positions, velocities);
+  return positions;
+}
+
+/// One step at the current level (the preview of a progressive animation); throws
+/// ApiError(PS_ERROR_NUMERICAL) if it produced non-finite positions.
+void step_once(ps_sim& sim) {
+  const StepRecord step = sim.dynamics ? sim.dynamics->step_preview() : sim.simulation->step();
+  const Vector& x =
+      sim.dynamics ? sim.dynamics->preview().dofs() : sim.simulation->current().dofs();
+  if (!x.allFinite())
+    api_fail(PS_ERROR_NUMERICAL,
+             "step " + std::to_string(step.step) + " produced non-finite positions");
+}
+
+/// Whether the progress callback (if any) asks to cancel.
+bool cancelled(const ps_sim& sim, int32_t done, int32_t total, const char* phase) {
+  return sim.progress && sim.progress(sim.progress_user_data, done, total, phase) != 0;
 }
 
 /// Calls the progress callback; a non-zero answer cancels.
 void report_progress(const ps_sim& sim, int32_t done, int32_t total, const char* phase) {
-  if (sim.progress && sim.progress(sim.progress_user_data, done, total, phase) != 0)
+  if (cancelled(sim, done, total, phase))
     api_fail(PS_ERROR_CANCELLED, std::string("cancelled by the progress callback during ") + phase +
                                      " after " + std::to_string(done) + " of " +
                                      std::to_string(total));
@@ -51,10 +71,7 @@ PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps) {
       api_fail(PS_ERROR_INVALID_ARGUMENT, "steps = " + std::to_string(steps) + " must be >= 1");
     const BusyGuard busy(*sim);
     for (int32_t s = 0; s < steps; ++s) {
-      const StepRecord step = sim->simulation->step();
-      if (!sim->simulation->current().dofs().allFinite())
-        api_fail(PS_ERROR_NUMERICAL,
-                 "step " + std::to_string(step.step) + " produced non-finite positions");
+      step_once(*sim);
       report_progress(*sim, s + 1, steps, "preview");
     }
   });
@@ -64,6 +81,11 @@ PS_API int32_t ps_sim_refine(ps_sim* sim) {
   return guarded(error_slot(sim), "ps_sim_refine", [&] {
     require_idle(sim);
     const BusyGuard busy(*sim);
+    if (sim->dynamics) {  // cancelling makes the core throw Error(cancelled), nothing changed
+      sim->dynamics->refine(
+          [&](int done, int total) { return !cancelled(*sim, done, total, "refine"); });
+      return;
+    }
     report_progress(*sim, 0, 1, "refine");
     sim->simulation->refine();
     report_progress(*sim, 1, 1, "refine");
@@ -76,12 +98,13 @@ PS_API int32_t ps_sim_settle(ps_sim* sim, int32_t max_solves, int32_t* equilibri
     if (max_solves < 1)
       api_fail(PS_ERROR_INVALID_ARGUMENT,
                "max_solves = " + std::to_string(max_solves) + " must be >= 1");
+    ProgressiveSimulation& psq = quasistatic_driver(*sim);
     const BusyGuard busy(*sim);
     bool reached = false;
     for (int32_t k = 0; k < max_solves && !reached; ++k) {
-      sim->simulation->settle();
-      reached = sim->simulation->records()[sim->simulation->level()].equilibrium;
-      if (!sim->simulation->current().dofs().allFinite())
+      psq.settle();
+      reached = psq.records()[psq.level()].equilibrium;
+      if (!psq.current().dofs().allFinite())
         api_fail(PS_ERROR_NUMERICAL, "settling produced non-finite positions");
       report_progress(*sim, k + 1, max_solves, "settle");
     }
@@ -93,7 +116,7 @@ PS_API int32_t ps_sim_current_level(const ps_sim* sim, int32_t* out) {
   return guarded(error_slot(sim), "ps_sim_current_level", [&] {
     require_idle(sim);
     require(out, "out");
-    *out = sim->simulation->level();
+    *out = sim->dynamics ? sim->dynamics->level() : sim->simulation->level();
   });
 }
 
@@ -121,8 +144,9 @@ PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level
   return guarded(error_slot(sim), "ps_sim_get_level_stats", [&] {
     require_idle(sim);
     require(out, "out");
+    const ProgressiveSimulation& psq = quasistatic_driver(*sim);
     level_mesh(*sim->hierarchy, level);  // range check
-    const LevelRecord& r = sim->simulation->records()[level];
+    const LevelRecord& r = psq.records()[level];
     ps_level_stats stats{};
     stats.level = level;
     stats.steps = r.steps;
@@ -132,7 +156,7 @@ PS_API int32_t ps_sim_get_level_stats(const ps_sim* sim, int32_t level, ps_level
     stats.energy = r.energy;
     stats.gradient_norm = r.gradient_norm;
     stats.simulated_time = r.simulated_time;
-    const std::optional<StateDistance> error = sim->simulation->error_against_finest(level);
+    const std::optional<StateDistance> error = psq.error_against_finest(level);
     stats.error_rms = error ? error->rms : std::numeric_limits<double>::quiet_NaN();
     stats.error_max = error ? error->max : std::numeric_limits<double>::quiet_NaN();
     stats.settles = r.settles;

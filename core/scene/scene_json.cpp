@@ -340,7 +340,7 @@ ProgressiveSettings progressive(const Json& j) {
     p.coarse_levels = integer(j.at("coarse_levels"), where + ".coarse_levels");
   p.coarsening_ratio = number_or(j, "coarsening_ratio", p.coarsening_ratio, where);
   p.preview_tolerance = number_or(j, "preview_tolerance", p.preview_tolerance, where);
-  p.consistency_weight = number_or(j, "consistency_weight", p.consistency_weight, where);
+  p.consistency_weight = parameter(j, "progressive", "consistency_weight", where);
   if (j.contains("preview_iterations"))
     p.preview_iterations = integer(j.at("preview_iterations"), where + ".preview_iterations");
   if (j.contains("proximal")) {

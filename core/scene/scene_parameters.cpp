@@ -43,6 +43,8 @@ const std::vector<Accessor>& accessors() {
       {"contact.stiffness", [](Scene& s) { return std::vector<double*>{&s.contact.stiffness}; }},
       {"contact.friction_velocity",
        [](Scene& s) { return std::vector<double*>{&s.contact.friction_velocity}; }},
+      {"progressive.consistency_weight",
+       [](Scene& s) { return std::vector<double*>{&s.progressive.consistency_weight}; }},
       {"gravity.x", [](Scene& s) { return std::vector<double*>{&s.gravity.x()}; }},
       {"gravity.y", [](Scene& s) { return std::vector<double*>{&s.gravity.y()}; }},
       {"gravity.z", [](Scene& s) { return std::vector<double*>{&s.gravity.z()}; }},

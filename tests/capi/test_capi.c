@@ -327,7 +327,7 @@ static int32_t count_reports(void* user_data, int32_t done, int32_t total, const
 }
 
 /* A decimated hierarchy: sizes, exact rest recovery through ps_hierarchy_prolong, progress,
- * cancellation, save/load, and the calls a multi-level hierarchy refuses. */
+ * cancellation, save/load, and a progressive animation by default on it. */
 static void test_levels(void) {
   ps_hierarchy_def hdef;
   ps_hierarchy_def_init(&hdef);
@@ -358,9 +358,13 @@ static void test_levels(void) {
   CHECK(count == 3 * 441 && worst < 1e-9);
   CHECK_ERROR(ps_hierarchy_prolong(h, 0, coarse_rest, 89, prolonged, 3 * 441, &count),
               PS_ERROR_INVALID_ARGUMENT, ps_hierarchy_last_error(h), "needs 90");
-  ps_sim* sim = NULL; /* the default mode is dynamic: Progressive Dynamics is not in yet */
-  CHECK_ERROR(ps_sim_create(h, NULL, &sim), PS_ERROR_UNSUPPORTED, ps_last_error(),
-              "Progressive Dynamics");
+  ps_sim* sim = NULL; /* the default mode is dynamic: a progressive animation */
+  int32_t kind = -1, frames = 0;
+  CHECK(ps_sim_create(h, NULL, &sim) == PS_OK);
+  CHECK(ps_sim_get_kind(sim, &kind) == PS_OK && kind == PS_SIM_PROGRESSIVE_DYNAMICS);
+  CHECK(ps_sim_step_preview(sim, 2) == PS_OK && ps_sim_refine(sim) == PS_OK);
+  CHECK(ps_sim_num_frames(sim, 1, &frames) == PS_OK && frames == 3);
+  ps_sim_destroy(sim);
 
   char saved[4096];
   snprintf(saved, sizeof saved, "%s/test_capi_levels.hierarchy",

@@ -40,3 +40,32 @@ def test_hanging_cloth_example(tmp_path):
     assert vertices.shape == (441, 3)
     assert sum(line.startswith("f ") for line in lines) == 800
     assert abs(vertices[:, 2].min() - lowest) <= 5e-4  # printed with 3 decimals
+
+
+def test_progressive_animation_example(tmp_path):
+    result = subprocess.run(
+        [
+            sys.executable,
+            str(REPO / "examples" / "python" / "progressive_animation.py"),
+            "--cells",
+            "10",
+            "--steps",
+            "4",
+            "--levels",
+            "16,40",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        cwd=tmp_path,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "refine" in result.stderr  # the progress bar of each refinement
+    assert "progressive_dynamics, 3 levels, prediction velocity_only" in result.stdout
+    rows = re.findall(
+        r"level (\d): (\d+) vertices, 4 steps in [0-9.]+ s, max centre-of-mass deviation "
+        r"from the preview ([0-9.e+-]+) m",
+        result.stdout,
+    )
+    assert [(int(level), int(n)) for level, n, _ in rows] == [(0, 16), (1, 40), (2, 121)]
+    assert float(rows[0][2]) == 0.0

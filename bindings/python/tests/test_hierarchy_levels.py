@@ -94,5 +94,8 @@ def test_bad_requests_are_clear_errors(levels):
         levels.prolong(np.full((30, 3), np.nan), 0)
     with pytest.raises(progsim.OutOfRangeError):
         levels.prolong(np.zeros((30, 3)), 7)
-    with pytest.raises(progsim.UnsupportedError, match="Progressive Dynamics"):
-        progsim.Simulation(levels)  # the default mode is dynamic
+    # The default mode is dynamic: on several levels, a progressive animation.
+    with progsim.Simulation(levels) as sim:
+        assert sim.kind == "progressive_dynamics"
+        with pytest.raises(progsim.WrongCallOrderError, match="preview at least one step"):
+            sim.refine()

@@ -44,7 +44,7 @@ from ._errors import (  # noqa: F401 - re-exported through __all__
 )
 
 #: Version of this Python package.
-__version__ = "0.11.0"
+__version__ = "0.12.0"
 
 #: The header version these bindings were compiled against (major·10000 + minor·100 + patch).
 HEADER_VERSION: int = _lib.PS_VERSION_HEADER
@@ -56,8 +56,13 @@ from .accuracy import Accuracy, AccuracyRow  # noqa: E402 - after the version ch
 from .hierarchy import Hierarchy  # noqa: E402
 from .simulation import (  # noqa: E402
     EFFECTS,
+    KINDS,
     MODES,
     PARAMETERS,
+    PREDICTIONS,
+    STEP_STATS_DTYPE,
+    DynamicLevelStats,
+    Frame,
     LevelStats,
     RefinementStats,
     Simulation,
@@ -66,7 +71,7 @@ from .simulation import (  # noqa: E402
 
 
 def library_version() -> str:
-    """The loaded libprogsim's version as text, e.g. ``"0.11.0"``."""
+    """The loaded libprogsim's version as text, e.g. ``"0.12.0"``."""
     return _ffi.string(_lib.ps_version_string()).decode("ascii")
 
 
@@ -83,9 +88,14 @@ __all__ = [
     "LevelStats",
     "RefinementStats",
     "StrainCorrectionStats",
+    "DynamicLevelStats",
+    "Frame",
+    "STEP_STATS_DTYPE",
     "EFFECTS",
+    "KINDS",
     "MODES",
     "PARAMETERS",
+    "PREDICTIONS",
     "HEADER_VERSION",
     "library_version",
     "library_version_number",

@@ -222,19 +222,24 @@ def output_array(out: Optional[np.ndarray], rows: int, dtype: Any, name: str) ->
 
 
 def fetch_rows(
-    call: Callable[..., None], function: Any, level: int, dtype: Any, out: Optional[np.ndarray]
+    call: Callable[..., None],
+    function: Any,
+    where: Tuple[int, ...],
+    dtype: Any,
+    out: Optional[np.ndarray],
 ) -> np.ndarray:
-    """Runs the C ABI's size-then-fill protocol for a (rows, 3) array of ``level``.
+    """Runs the C ABI's size-then-fill protocol for a (rows, 3) array.
 
     ``call(function, *args)`` is the owner's checked call; ``function`` a ps_*_get_* entry
-    point taking (handle, level, buffer, capacity, count).
+    point taking (handle, *where, buffer, capacity, count), ``where`` being (level,) or
+    (level, frame).
     """
     ctype = "double[]" if np.dtype(dtype) == np.float64 else "int32_t[]"
     count = ffi.new("size_t*")
-    call(function, level, ffi.NULL, 0, count)
+    call(function, *where, ffi.NULL, 0, count)
     array = output_array(out, count[0] // 3, dtype, "out")
     buffer = ffi.from_buffer(ctype, array, require_writable=True)
-    call(function, level, buffer, array.size, count)
+    call(function, *where, buffer, array.size, count)
     return array
 
 

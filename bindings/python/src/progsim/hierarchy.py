@@ -265,7 +265,9 @@ class Hierarchy(NativeObject):
         Raises:
             OutOfRangeError: the level does not exist.
         """
-        return fetch_rows(self._call, lib.ps_hierarchy_get_rest_positions, self._level(level), np.float64, out)
+        return fetch_rows(
+            self._call, lib.ps_hierarchy_get_rest_positions, (self._level(level),), np.float64, out
+        )
 
     def faces(self, level: Optional[int] = None, out: Optional[np.ndarray] = None) -> np.ndarray:
         """Faces of ``level`` (default: the finest) as an int32 (m, 3) array of vertex indices.
@@ -276,7 +278,7 @@ class Hierarchy(NativeObject):
         Raises:
             OutOfRangeError: the level does not exist.
         """
-        return fetch_rows(self._call, lib.ps_hierarchy_get_faces, self._level(level), np.int32, out)
+        return fetch_rows(self._call, lib.ps_hierarchy_get_faces, (self._level(level),), np.int32, out)
 
     def prolong(
         self, positions: Any, level: int = 0, out: Optional[np.ndarray] = None

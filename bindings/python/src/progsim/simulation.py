@@ -5,7 +5,18 @@ from __future__ import annotations
 import json
 import os
 from dataclasses import dataclass
-from typing import Any, Dict, FrozenSet, Iterable, Mapping, Optional, Sequence, Tuple, Union
+from typing import (
+    Any,
+    Dict,
+    FrozenSet,
+    Iterable,
+    Iterator,
+    Mapping,
+    Optional,
+    Sequence,
+    Tuple,
+    Union,
+)
 
 import numpy as np
 
@@ -16,6 +27,7 @@ from ._native import (
     ProgressRun,
     _thread_state,
     as_indices,
+    as_vertices,
     check_create,
     decode,
     int32_value,
@@ -27,7 +39,19 @@ from ._native import (
 from ._progsim_cffi import ffi, lib
 from .hierarchy import Hierarchy, PathLike
 
-__all__ = ["Simulation", "LevelStats", "RefinementStats", "EFFECTS", "MODES", "PARAMETERS"]
+__all__ = [
+    "Simulation",
+    "LevelStats",
+    "RefinementStats",
+    "DynamicLevelStats",
+    "Frame",
+    "STEP_STATS_DTYPE",
+    "EFFECTS",
+    "MODES",
+    "PREDICTIONS",
+    "KINDS",
+    "PARAMETERS",
+]
 
 #: Effect names and their ``ps_effect`` bits.
 EFFECTS: Dict[str, int] = {
@@ -46,7 +70,24 @@ MODES: Dict[str, int] = {
     "quasistatic": lib.PS_MODE_QUASISTATIC,
 }
 
-_GROUPS = ("simulation_", "material_", "contact_", "solver_")
+#: How a progressive animation's finer levels predict their steps (``ps_prediction``):
+#: ``velocity_only`` (PD++, the default), ``prolonged_positions`` (PD eq. 5), ``per_frame``
+#: (PSQ per frame, for comparison).
+PREDICTIONS: Dict[str, int] = {
+    "velocity_only": lib.PS_PREDICTION_VELOCITY_ONLY,
+    "prolonged_positions": lib.PS_PREDICTION_PROLONGED_POSITIONS,
+    "per_frame": lib.PS_PREDICTION_PER_FRAME,
+}
+
+#: What drives a simulation (``ps_sim_kind``): one level is ``direct``; several levels are
+#: ``psq`` (quasistatic) or ``progressive_dynamics`` (dynamic: a progressive animation).
+KINDS: Dict[str, int] = {
+    "direct": lib.PS_SIM_DIRECT,
+    "psq": lib.PS_SIM_PSQ,
+    "progressive_dynamics": lib.PS_SIM_PROGRESSIVE_DYNAMICS,
+}
+
+_GROUPS = ("simulation_", "material_", "contact_", "solver_", "progressive_")
 
 #: Keyword → ps_sim_def field, for the parameter-table fields (``time_step`` →
 #: ``simulation_time_step``). Read from the compiled struct, so new table rows appear here.
@@ -163,6 +204,69 @@ class LevelStats:
     strain_correction: StrainCorrectionStats  #: how the refined start met its strain limits
 
 
+@dataclass(frozen=True)
+class DynamicLevelStats:
+    """One computed level of a progressive animation (``ps_dynamic_level_stats``)."""
+
+    level: int  #: which level
+    vertices: int  #: of the level's mesh
+    steps: int  #: steps animated at this level
+    newton_iterations: int  #: over its steps
+    converged_steps: int  #: steps whose Newton solve met the tolerance
+    seconds: float  #: wall time of its steps, s
+
+
+def _step_stats_dtype() -> np.dtype:
+    """The numpy layout of ``ps_step_stats``, read from the compiled struct."""
+    names, formats, offsets = [], [], []
+    for name, field in ffi.typeof("ps_step_stats").fields:
+        names.append(name)
+        offsets.append(field.offset)
+        if field.type.kind == "array":
+            formats.append(("f8", (field.type.length,)))
+        else:
+            formats.append("i4" if "int" in field.type.cname else "f8")
+    return np.dtype(
+        {
+            "names": names,
+            "formats": formats,
+            "offsets": offsets,
+            "itemsize": ffi.sizeof("ps_step_stats"),
+        }
+    )
+
+
+#: The numpy structured dtype of :meth:`Simulation.step_stats`, one record per step:
+#: ``step`` (1-based: the step from frame step − 1 to frame step), ``newton_iterations``,
+#: ``converged`` (1 if the Newton solve met the tolerance), ``time`` (s, after the step),
+#: ``seconds`` (wall time), ``kinetic_energy`` (J), ``center_of_mass`` (3 floats, m),
+#: ``com_deviation`` (m, from the preview at the same time, PD Fig. 19), ``continuity``
+#: (VPD App. C eq. 18, dimensionless), ``continuity_error`` (eq. 17, m) and ``consistency``
+#: (eq. 19, m).
+STEP_STATS_DTYPE: np.dtype = _step_stats_dtype()
+
+
+@dataclass(frozen=True)
+class Frame:
+    """One frame of a level of a progressive animation (see :meth:`Simulation.frames`)."""
+
+    level: int  #: which level
+    index: int  #: 0 = the initial state, k = after step k
+    positions: np.ndarray  #: float64 (n, 3), m
+    velocities: np.ndarray  #: float64 (n, 3), m/s
+
+
+def _choice(table: Dict[str, int], value: str, what: str) -> int:
+    """The C value of a named option, or :class:`InvalidArgumentError` listing the names."""
+    if value not in table:
+        raise InvalidArgumentError(f"unknown {what} {value!r}; the {what}s are {', '.join(table)}")
+    return table[value]
+
+
+def _name_of(table: Dict[str, int], value: int) -> str:
+    return next(name for name, code in table.items() if code == value)
+
+
 def _effect_bit(name: str) -> int:
     try:
         return EFFECTS[name]
@@ -223,13 +327,19 @@ class Simulation(NativeObject):
         max_cg_iterations: Optional[int] = None,
         line_search_extrapolation: Optional[bool] = None,
         crossing_start: Optional[bool] = None,
+        consistency_weight: Optional[float] = None,
         mode: str = "dynamic",
+        prediction: Optional[str] = None,
         effects: Optional[Iterable[str]] = None,
         gravity: Optional[Sequence[float]] = None,
         pressure: Optional[float] = None,
         pinned: Optional[Sequence[int]] = None,
     ) -> None:
         """Creates a simulation of ``hierarchy``, at rest on level 0.
+
+        Its :attr:`kind` follows from the hierarchy and the mode: one level gives a direct
+        simulation; several levels give a progressive animation (Progressive Dynamics) in
+        ``"dynamic"`` mode, the default, and PSQ in ``"quasistatic"`` mode.
 
         Every parameter left as None keeps the library default (``progsim params`` lists
         defaults and ranges).
@@ -257,8 +367,14 @@ class Simulation(NativeObject):
                 finest rest shape that crosses itself (safe refinement separates it level by
                 level); False refuses it with :class:`~progsim.IntersectingError` naming a
                 crossing pair.
+            consistency_weight: dimensionless, in [0, 1e12]; default 0 (off). A progressive
+                animation's consistency penalty w/(2h²)‖x − P(x_coarser)‖²_M pulling each
+                finer level toward the prolonged coarser frame (VPD eq. 4; 1 weighs it like
+                the inertia).
             mode: ``"dynamic"`` (implicit Euler) or ``"quasistatic"`` (energy minimisation
                 per load step).
+            prediction: how a progressive animation's finer levels predict each step from
+                the coarser frames, a :data:`PREDICTIONS` name; default ``"velocity_only"``.
             effects: names among ``membrane``, ``bending``, ``gravity``, ``pressure``,
                 ``contact``, ``friction``, ``strain_limit``;
                 default ``{"membrane", "bending", "gravity"}``.
@@ -291,6 +407,7 @@ class Simulation(NativeObject):
             "max_cg_iterations": max_cg_iterations,
             "line_search_extrapolation": line_search_extrapolation,
             "crossing_start": crossing_start,
+            "consistency_weight": consistency_weight,
         }
         for keyword, value in values.items():
             if value is None:
@@ -301,9 +418,9 @@ class Simulation(NativeObject):
             else:
                 value = real_value(value, keyword)
             setattr(definition, field, value)
-        if mode not in MODES:
-            raise InvalidArgumentError(f"unknown mode {mode!r}; the modes are {', '.join(MODES)}")
-        definition.mode = MODES[mode]
+        definition.mode = _choice(MODES, mode, "mode")
+        if prediction is not None:
+            definition.prediction = _choice(PREDICTIONS, prediction, "prediction")
         if effects is not None:
             definition.effects = _effect_bits(effects)
         if gravity is not None:
@@ -400,6 +517,14 @@ class Simulation(NativeObject):
         return Hierarchy._borrowed(ffi.cast("ps_hierarchy*", out[0]), self)
 
     @property
+    def kind(self) -> str:
+        """What drives this simulation, a :data:`KINDS` name: ``"direct"`` (one level),
+        ``"psq"`` (quasistatic levels) or ``"progressive_dynamics"`` (an animation)."""
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_get_kind, out)
+        return _name_of(KINDS, out[0])
+
+    @property
     def num_levels(self) -> int:
         """Number of levels of the hierarchy."""
         return self.hierarchy.num_levels
@@ -480,13 +605,24 @@ class Simulation(NativeObject):
         (switching to quasistatic zeroes the velocities)."""
         out = ffi.new("int32_t*")
         self._call(lib.ps_sim_get_mode, out)
-        return next(name for name, value in MODES.items() if value == out[0])
+        return _name_of(MODES, out[0])
 
     @mode.setter
     def mode(self, name: str) -> None:
-        if name not in MODES:
-            raise InvalidArgumentError(f"unknown mode {name!r}; the modes are {', '.join(MODES)}")
-        self._call(lib.ps_sim_set_mode, MODES[name])
+        self._call(lib.ps_sim_set_mode, _choice(MODES, name, "mode"))
+
+    @property
+    def prediction(self) -> str:
+        """How a progressive animation's finer levels predict their steps, a
+        :data:`PREDICTIONS` name; assignable while the preview is open (a progressive
+        animation refuses it once a finer level is computed: :meth:`restart` first)."""
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_get_prediction, out)
+        return _name_of(PREDICTIONS, out[0])
+
+    @prediction.setter
+    def prediction(self, name: str) -> None:
+        self._call(lib.ps_sim_set_prediction, _choice(PREDICTIONS, name, "prediction"))
 
     def set_effect(self, name: str, enabled: bool = True) -> None:
         """Enables or disables one effect (``membrane``, ``bending``, ``gravity``,
@@ -607,6 +743,10 @@ class Simulation(NativeObject):
         """Refines the current level l to l + 1 with the prolongation P^l_{l+1} (PSQ eq. 7),
         so that later steps run on the finer level (previews below the finest level).
 
+        A progressive animation instead animates level l + 1 over every previewed step (PD
+        eqs. 5–6), each step predicted from level l's frames (:attr:`prediction`); it
+        reports progress after each step, so ``progress=True`` shows a bar counting them.
+
         Args:
             progress: as for :meth:`step_preview` (phase ``"refine"``).
 
@@ -614,6 +754,9 @@ class Simulation(NativeObject):
             OutOfRangeError: already at the finest level (the state is unchanged).
             IntersectingError: with contact, no safe position was found for a vertex split
                 (PSQ §4.4's safe expansion); the state is unchanged.
+            WrongCallOrderError: a progressive animation with no preview step yet.
+            CancelledError: the progress callable asked to stop; a progressive animation
+                discards the level (nothing changed).
         """
         self._run(lib.ps_sim_refine, progress=progress)
 
@@ -657,7 +800,9 @@ class Simulation(NativeObject):
         Raises:
             OutOfRangeError: the level does not exist.
         """
-        return fetch_rows(self._call, lib.ps_sim_get_positions, self._level(level), np.float64, out)
+        return fetch_rows(
+            self._call, lib.ps_sim_get_positions, (self._level(level),), np.float64, out
+        )
 
     def write_mesh(self, level: Optional[int], path: PathLike) -> None:
         """Writes a level's current mesh (``None``: the current level) to ``path``; the
@@ -702,10 +847,115 @@ class Simulation(NativeObject):
             strain_correction=StrainCorrectionStats._from_native(out.strain_correction),
         )
 
+    # -- progressive animation ------------------------------------------------------------------
+
+    def num_frames(self, level: int = 0) -> int:
+        """Frames of a computed level of a progressive animation: previewed steps + 1 (frame
+        0 is the initial state, frame k the state after step k).
+
+        Raises:
+            OutOfRangeError: the level does not exist or has not been computed.
+            InvalidArgumentError: not a progressive animation (see :attr:`kind`).
+        """
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_num_frames, self._level(level), out)
+        return int(out[0])
+
+    def frame_positions(
+        self, level: int, frame: int, out: Optional[np.ndarray] = None
+    ) -> np.ndarray:
+        """Positions of frame ``frame`` of ``level`` as a float64 (n, 3) array, m.
+
+        Args:
+            level: a computed level (negative counts from the finest level).
+            frame: 0 to :meth:`num_frames` − 1.
+            out: optional C-contiguous float64 (n, 3) array to fill instead of a new one.
+
+        Raises:
+            OutOfRangeError: a level or frame not computed.
+            InvalidArgumentError: not a progressive animation, or a bad ``out``.
+        """
+        where = (self._level(level), int32_value(frame, "frame"))
+        return fetch_rows(self._call, lib.ps_sim_get_frame_positions, where, np.float64, out)
+
+    def frame_velocities(
+        self, level: int, frame: int, out: Optional[np.ndarray] = None
+    ) -> np.ndarray:
+        """Velocities of frame ``frame`` of ``level`` as a float64 (n, 3) array, m/s; as
+        :meth:`frame_positions`."""
+        where = (self._level(level), int32_value(frame, "frame"))
+        return fetch_rows(self._call, lib.ps_sim_get_frame_velocities, where, np.float64, out)
+
+    def frames(self, level: int = 0) -> Iterator[Frame]:
+        """Iterates over the frames of a computed level, from frame 0 (read from disk one at
+        a time, so long animations do not fill memory).
+
+        Raises:
+            OutOfRangeError: the level does not exist or has not been computed.
+        """
+        level = self._level(level)
+        for index in range(self.num_frames(level)):
+            yield Frame(
+                level,
+                index,
+                self.frame_positions(level, index),
+                self.frame_velocities(level, index),
+            )
+
+    def set_preview_velocities(self, velocities: Any) -> None:
+        """Sets the preview's initial velocities, a (n₀, 3) array (m/s, n₀ the vertices of
+        level 0), before its first step.
+
+        Raises:
+            InvalidArgumentError: a wrong shape or a NaN/Inf entry.
+            WrongCallOrderError: the preview has taken steps (:meth:`restart` first).
+        """
+        array = as_vertices(velocities, "velocities")
+        buffer = ffi.from_buffer("double[]", array) if array.size else ffi.NULL
+        self._call(lib.ps_sim_set_preview_velocities, buffer, array.size)
+
+    def restart(self) -> None:
+        """Discards every level's frames and starts the preview again at rest with the
+        current parameters (initial velocities set before are discarded too)."""
+        self._call(lib.ps_sim_restart)
+
+    def step_stats(self, level: int = 0) -> np.ndarray:
+        """Per-step statistics of a computed level as a numpy structured array of
+        :data:`STEP_STATS_DTYPE`, one record per step in order (``stats["kinetic_energy"]``,
+        ``stats["center_of_mass"]`` (steps, 3), ``stats["com_deviation"]``, ...).
+
+        Raises:
+            OutOfRangeError: the level does not exist or has not been computed.
+        """
+        level = self._level(level)
+        count = ffi.new("size_t*")
+        self._call(lib.ps_sim_get_step_stats, level, ffi.NULL, 0, count)
+        stats = np.zeros(count[0], dtype=STEP_STATS_DTYPE)
+        if count[0]:
+            buffer = ffi.cast("ps_step_stats*", ffi.from_buffer(stats, require_writable=True))
+            self._call(lib.ps_sim_get_step_stats, level, buffer, count[0], count)
+        return stats
+
+    def dynamic_level_stats(self, level: int = 0) -> DynamicLevelStats:
+        """Size and work of a computed level of a progressive animation.
+
+        Raises:
+            OutOfRangeError: the level does not exist or has not been computed.
+        """
+        out = ffi.new("ps_dynamic_level_stats*")
+        self._call(lib.ps_sim_get_dynamic_level_stats, self._level(level), out)
+        fields = ffi.typeof("ps_dynamic_level_stats").fields
+        return DynamicLevelStats(**{name: getattr(out, name) for name, _ in fields})
+
     def __repr__(self) -> str:
         if self.closed:
             return "<progsim.Simulation (closed)>"
         try:
+            if self.kind == "progressive_dynamics":
+                return (
+                    f"<progsim.Simulation progressive animation, level {self.current_level} of "
+                    f"{self.num_levels} computed, {self.num_frames(0)} frames>"
+                )
             return (
                 f"<progsim.Simulation level {self.current_level} of {self.num_levels}, "
                 f"t = {self.level_stats().simulated_time:g} s>"

@@ -6,7 +6,7 @@ use std::ops::BitOr;
 
 use progsim_sys as sys;
 
-use crate::{Error, Result, Status};
+use crate::{Error, Prediction, Result, Status};
 
 /// How to build a [`Hierarchy`](crate::Hierarchy). The default (no coarse levels) gives one
 /// level: the input mesh itself.
@@ -290,8 +290,16 @@ pub struct SimulationDef {
     /// step while the energy falls and CCD allows; default true
     /// (`solver.line_search_extrapolation`). False for comparison runs.
     pub line_search_extrapolation: bool,
-    /// How steps advance; default [`Mode::Dynamic`].
+    /// Weight w of a progressive animation's consistency penalty w/(2h²)‖x − P(x_coarser)‖²_M
+    /// pulling each finer level toward the prolonged coarser frame (VPD eq. 4; 1 weighs it
+    /// like the inertia), in [0, 1e12]; default 0 = off (`progressive.consistency_weight`).
+    pub consistency_weight: f64,
+    /// How steps advance; default [`Mode::Dynamic`] (on several levels: a progressive
+    /// animation).
     pub mode: Mode,
+    /// How a progressive animation's finer levels predict their steps; default
+    /// [`Prediction::VelocityOnly`].
+    pub prediction: Prediction,
     /// Enabled effects; default membrane, bending and gravity.
     pub effects: Effects,
     /// Gravity, m/s², `[gx, gy, gz]`; default `[0, -9.81, 0]`. Used while
@@ -335,7 +343,9 @@ impl Default for SimulationDef {
             max_newton_iterations: raw.solver_max_newton_iterations,
             max_cg_iterations: raw.solver_max_cg_iterations,
             line_search_extrapolation: raw.solver_line_search_extrapolation != 0,
+            consistency_weight: raw.progressive_consistency_weight,
             mode: Mode::from_raw(raw.mode).unwrap_or_default(),
+            prediction: Prediction::from_raw(raw.prediction).unwrap_or_default(),
             effects: Effects::from_bits_retain(raw.effects),
             gravity: raw.gravity,
             pressure: raw.pressure,
@@ -369,7 +379,9 @@ impl SimulationDef {
         raw.solver_max_newton_iterations = self.max_newton_iterations;
         raw.solver_max_cg_iterations = self.max_cg_iterations;
         raw.solver_line_search_extrapolation = i32::from(self.line_search_extrapolation);
+        raw.progressive_consistency_weight = self.consistency_weight;
         raw.mode = self.mode.to_raw();
+        raw.prediction = self.prediction.to_raw();
         raw.effects = self.effects.bits();
         raw.gravity = self.gravity;
         raw.pressure = self.pressure;
@@ -589,6 +601,8 @@ mod tests {
         assert_eq!(def.max_cg_iterations, 0);
         assert!(def.line_search_extrapolation);
         assert_eq!(def.mode, Mode::Dynamic);
+        assert_eq!(def.prediction, Prediction::VelocityOnly);
+        assert_eq!(def.consistency_weight, 0.0);
         assert_eq!(def.effects, Effect::Membrane | Effect::Bending | Effect::Gravity);
         assert_eq!(def.gravity, [0.0, -9.81, 0.0]);
         assert_eq!(def.pressure, 0.0);
@@ -600,6 +614,8 @@ mod tests {
         let def = SimulationDef {
             time_step: 0.02,
             mode: Mode::Quasistatic,
+            prediction: Prediction::PerFrame,
+            consistency_weight: 0.5,
             effects: Effect::Membrane.into(),
             gravity: [1.0, 2.0, 3.0],
             pinned_vertices: vec![3, 5],
@@ -608,6 +624,8 @@ mod tests {
         let raw = def.to_raw();
         assert_eq!(raw.simulation_time_step, 0.02);
         assert_eq!(raw.mode, sys::PS_MODE_QUASISTATIC);
+        assert_eq!(raw.prediction, sys::PS_PREDICTION_PER_FRAME);
+        assert_eq!(raw.progressive_consistency_weight, 0.5);
         assert_eq!(raw.effects, sys::PS_EFFECT_MEMBRANE);
         assert_eq!(raw.gravity, [1.0, 2.0, 3.0]);
         assert_eq!(raw.num_pinned_vertices, 2);

@@ -46,6 +46,7 @@
 #![warn(missing_docs)]
 
 mod accuracy;
+mod animation;
 mod def;
 mod error;
 mod hierarchy;
@@ -59,6 +60,7 @@ use std::sync::OnceLock;
 use progsim_sys as sys;
 
 pub use accuracy::{Accuracy, AccuracyDef, AccuracyRow, Method};
+pub use animation::{DynamicLevelStats, Frame, Prediction, SimulationKind, StepStats};
 pub use def::{
     Effect, Effects, HandleMotion, HierarchyDef, LevelStats, Mode, RefinementStats, SimulationDef,
     StrainCorrectionStats,

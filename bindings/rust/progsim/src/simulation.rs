@@ -86,13 +86,13 @@ impl<'h> Simulation<'h> {
     }
 
     /// The C handle for a call, or [`Status::WrongCallOrder`] inside a progress closure.
-    fn handle(&self) -> Result<*mut sys::ps_sim> {
+    pub(crate) fn handle(&self) -> Result<*mut sys::ps_sim> {
         not_in_callback()?;
         Ok(self.raw.as_ptr())
     }
 
     /// Ok, or the error of the last failed call on this simulation.
-    fn check(&self, status: i32) -> Result<()> {
+    pub(crate) fn check(&self, status: i32) -> Result<()> {
         // SAFETY: self.raw is a live simulation; the message is copied at once.
         check(status, || unsafe { sys::ps_sim_last_error(self.raw.as_ptr()) })
     }
@@ -266,10 +266,16 @@ impl<'h> Simulation<'h> {
     /// Refines the current level l to l + 1 with the prolongation P^l_{l+1} (PSQ eq. 7), so
     /// that later steps run on the finer level (previews below the finest level).
     ///
+    /// A progressive animation ([`SimulationKind::ProgressiveDynamics`](crate::SimulationKind))
+    /// instead animates level l + 1 over every previewed step (PD eqs. 5–6), each step
+    /// predicted from level l's frames ([`prediction`](Self::prediction)); its frames are then
+    /// read with [`frame_positions`](Self::frame_positions).
+    ///
     /// # Errors
     /// [`Status::OutOfRange`] at the finest level; [`Status::Intersecting`] when, with contact,
-    /// no safe position is found for a vertex split (PSQ §4.4's safe expansion). The state is
-    /// unchanged on error.
+    /// no safe position is found for a vertex split (PSQ §4.4's safe expansion);
+    /// [`Status::WrongCallOrder`] for a progressive animation with no preview step. The state
+    /// is unchanged on error.
     pub fn refine(&mut self) -> Result<()> {
         let raw = self.handle()?;
         // SAFETY: live simulation.
@@ -295,8 +301,9 @@ impl<'h> Simulation<'h> {
     }
 
     /// As [`refine`](Self::refine), reporting progress as
-    /// [`step_preview_with_progress`](Self::step_preview_with_progress) does (phases
-    /// `"refine"`, `"solve"`).
+    /// [`step_preview_with_progress`](Self::step_preview_with_progress) does (phase
+    /// `"refine"`; a progressive animation reports after each step, `total` being the
+    /// previewed steps, and discards the level when cancelled).
     ///
     /// # Errors
     /// As `refine`, and [`Status::Cancelled`].

@@ -4,7 +4,7 @@
 mod common;
 
 use common::square_cloth;
-use progsim::{Hierarchy, HierarchyDef, Mode, Simulation, SimulationDef, Status};
+use progsim::{Hierarchy, HierarchyDef, Mode, Simulation, SimulationDef, SimulationKind, Status};
 
 fn cloth_levels() -> Hierarchy {
     let def = HierarchyDef { coarse_vertex_counts: vec![30, 110], ..Default::default() };
@@ -68,10 +68,12 @@ fn bad_requests_are_errors() {
     let def = HierarchyDef { coarse_vertex_counts: vec![50, 50], ..Default::default() };
     let error = Hierarchy::from_file_with(&def, square_cloth()).unwrap_err();
     assert_eq!(error.code, Status::InvalidArgument);
-    // The default mode is dynamic: Progressive Dynamics is not in this version.
-    let error = Simulation::new(&hierarchy, &SimulationDef::default()).unwrap_err();
-    assert_eq!(error.code, Status::Unsupported);
-    assert!(error.message.contains("Progressive Dynamics"), "{}", error.message);
+    // The default mode is dynamic: on several levels, a progressive animation.
+    let mut sim = Simulation::new(&hierarchy, &SimulationDef::default()).unwrap();
+    assert_eq!(sim.kind().unwrap(), SimulationKind::ProgressiveDynamics);
+    let error = sim.refine().unwrap_err();
+    assert_eq!(error.code, Status::WrongCallOrder);
+    assert!(error.message.contains("preview at least one step"), "{}", error.message);
 }
 
 #[test]
