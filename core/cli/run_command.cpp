@@ -1,19 +1,17 @@
 #include "cli/run_command.hpp"
 
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <optional>
-#include <sstream>
 
+#include "cli/dynamics_run.hpp"
 #include "cli/progress_bar.hpp"
+#include "cli/run_outcome.hpp"
+#include "cli/run_output.hpp"
 #include "common/error.hpp"
 #include "common/timer.hpp"
-#include "contact/contact_potential.hpp"
 #include "mesh/mesh_io.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
@@ -25,105 +23,9 @@ namespace fs = std::filesystem;
 namespace progsim::cli {
 namespace {
 
-std::string numbered(const fs::path& dir, const char* stem, int number) {
-  std::ostringstream name;
-  name << stem << std::setw(5) << std::setfill('0') << number << ".obj";
-  return (dir / name.str()).string();
-}
-
-std::ofstream open_log(const fs::path& dir) {
-  fs::create_directories(dir);
-  std::ofstream log(dir / "steps.jsonl");
-  if (!log) fail(Status::io_error, "cannot write " + (dir / "steps.jsonl").string());
-  return log;
-}
-
-/// Set by SIGINT during a run; the run stops at its next load step, settle or refinement.
-volatile std::sig_atomic_t g_interrupted = 0;
-
-void on_interrupt(int) {
-  g_interrupted = 1;
-}
-
-/// Throws Error(cancelled) once SIGINT has arrived.
-void stop_if_interrupted() {
-  if (g_interrupted) fail(Status::cancelled, "interrupted (SIGINT)");
-}
-
-/// How a run ended: summary.json's "status" ("ok", "not_converged", "failed", "cancelled"),
-/// "message" and the last step (and, progressive, level) that ended well.
-struct Outcome {
-  std::string status = "ok";
-  std::string message;
-  int last_good_step = 0;    ///< load steps solved without a failure (direct: the last converged)
-  int last_good_level = -1;  ///< progressive: the finest level left at equilibrium (−1: none)
-
-  bool ok() const { return status == "ok"; }
-  void fail(const std::string& why) {
-    status = "failed";
-    message = why;
-  }
-  /// A failure from an Error thrown `where`: "cancelled" for Error(cancelled), else "failed".
-  void fail(const std::string& where, const Error& e) {
-    fail(where + ": " + status_name(e.status()) + ": " + e.what());
-    if (e.status() == Status::cancelled) status = "cancelled";
-  }
-};
-
-/// Why a solve failed outright (non-finite values, no factorization), or nothing: a solve that
-/// only stopped at its iteration cap is not a failure here.
-std::optional<std::string> solve_failure(const StepRecord& record, const Positions& x) {
-  const NewtonStop stop = record.newton.stop;
-  if (stop == NewtonStop::non_finite || stop == NewtonStop::factorization_failed)
-    return std::string("its Newton solve ended '") + stop_name(stop) + "' after " +
-           std::to_string(record.newton.iterations) + " iterations";
-  if (!x.allFinite()) return std::string("its state is not finite");
-  return std::nullopt;
-}
-
-/// "failed: …" or "not_converged: …" on stderr, and the exit status of a run.
-int finish(const Outcome& outcome) {
-  if (outcome.ok()) return 0;
-  if (outcome.status == "cancelled") {
-    std::fprintf(stderr, "progsim: the run was cancelled: %s\n", outcome.message.c_str());
-    return kCancelled;
-  }
-  std::fprintf(stderr, "progsim: the simulation %s: %s\n",
-               outcome.status == "failed" ? "failed" : "did not converge", outcome.message.c_str());
-  return kSimulationFailed;
-}
-
-void add_outcome(nlohmann::json& summary, const Outcome& outcome, bool progressive) {
-  summary["status"] = outcome.status;
-  summary["message"] = outcome.message;
-  summary["last_good_step"] = outcome.last_good_step;
-  if (progressive) summary["last_good_level"] = outcome.last_good_level;
-}
-
-std::string outcome_line(const Outcome& outcome) {
-  return "status: " + outcome.status + (outcome.ok() ? "" : " (" + outcome.message + ")") + "\n";
-}
-
-/// The obstacles as `sim`'s contact meets them now: their positions (a progressive level's
-/// coarse copies, where its script rounds left them) and faces; empty without any.
-TriangleMesh met_obstacles(const LevelSimulation& sim) {
-  const ContactPotential* contact = sim.contact();
-  if (!contact || contact->mesh().num_obstacle_vertices == 0) return {};
-  const CollisionMesh& mesh = contact->mesh();
-  const Faces faces = (mesh.faces.bottomRows(mesh.faces.rows() - mesh.num_shell_faces).array() -
-                       mesh.num_shell_vertices)
-                          .matrix();
-  return {contact->obstacle_positions(), faces};
-}
-
-/// Writes `mesh` unless it is empty.
-void write_nonempty(const std::string& path, const TriangleMesh& mesh) {
-  if (mesh.num_vertices() > 0) write_mesh(path, mesh);
-}
-
 int run_direct(Scene scene, const RunCommand& opt) {
   LevelSimulation sim(std::move(scene));
-  sim.set_interrupt([] { return g_interrupted != 0; });  // a long solve stops at its iterate
+  sim.set_interrupt(interrupted);  // a long solve stops at its iterate
   const int steps = opt.steps > 0 ? opt.steps : sim.scene().num_steps();
   const fs::path dir(opt.out_dir);
   std::ofstream log = open_log(dir);
@@ -351,7 +253,7 @@ CLI::App* add_run_command(CLI::App& app, RunCommand& options) {
   CLI::App* cmd = app.add_subcommand(
       "run",
       "simulate a scene and write meshes and logs (progressively when it has a 'progressive' "
-      "section and is quasistatic)");
+      "section: PSQ for quasistatic scenes, Progressive Dynamics for dynamic ones)");
   cmd->add_option("scene", options.scene_path, "scene file (JSON)")->required();
   cmd->add_option("--out", options.out_dir, "output folder (created)")->required();
   cmd->add_option("--steps", options.steps, "override the number of load steps")
@@ -362,8 +264,8 @@ CLI::App* add_run_command(CLI::App& app, RunCommand& options) {
   cmd->add_flag("--direct", options.direct,
                 "solve a progressive scene directly on its finest mesh instead");
   cmd->add_flag("--preview-only", options.preview_only,
-                "progressive: stop after the preview on level 0 (its load steps and settling); "
-                "no refinement");
+                "progressive: stop after the preview on level 0 (its load steps and settling, or "
+                "its animation); no refinement");
   cmd->add_flag("--quiet", options.quiet, "no progress bar");
   cmd->footer(
       "Exit status: 0 the run ended \"ok\"; 2 bad input (a malformed scene or mesh, a "
@@ -377,17 +279,14 @@ CLI::App* add_run_command(CLI::App& app, RunCommand& options) {
 int run_run_command(const RunCommand& options) {
   Scene scene = load_scene_file(options.scene_path);
   validate_scene(scene);
-  const bool progressive = scene.progressive.enabled() && scene.mode == StepMode::quasistatic;
-  if (scene.progressive.enabled() && !progressive && !options.direct)
-    std::fprintf(stderr,
-                 "progsim run: %s is dynamic; Progressive Dynamics is not implemented, so it is "
-                 "solved directly on its finest mesh\n",
-                 scene.name.c_str());
-  if (options.preview_only && !(progressive && !options.direct))
+  const bool progressive = scene.progressive.enabled() && !options.direct;
+  if (options.preview_only && !progressive)
     fail(Status::invalid_argument, "--preview-only needs a progressive run: " + scene.name +
-                                       " has no coarse levels, is dynamic, or --direct was given");
-  std::signal(SIGINT, on_interrupt);  // Ctrl-C: a "cancelled" summary, not a torn folder
-  if (progressive && !options.direct) return run_progressive(std::move(scene), options);
+                                       " has no coarse levels, or --direct was given");
+  catch_interrupt();  // Ctrl-C: a "cancelled" summary, not a torn folder
+  if (progressive && scene.mode == StepMode::dynamic)
+    return run_progressive_dynamics(std::move(scene), options);
+  if (progressive) return run_progressive(std::move(scene), options);
   return run_direct(std::move(scene), options);
 }
 

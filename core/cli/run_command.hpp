@@ -1,20 +1,14 @@
 #pragma once
 /// @file `progsim run`: simulate a scene and write meshes, a per-solve log and a summary. A
 /// quasistatic scene with a `progressive` section runs as PSQ (preview on the coarsest level,
-/// then refinement level by level to the converged finest result); any other directly.
+/// then refinement level by level to the converged finest result), a dynamic one as Progressive
+/// Dynamics (dynamics_run.hpp); any other directly.
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "cli/run_outcome.hpp"
+
 namespace progsim::cli {
-
-/// Exit status of a run whose simulation failed (a non-finite or unfactorizable solve, an
-/// error after the start) or did not converge (the finest level, or a direct run's last
-/// step); 2 is bad input, refused before anything is written.
-constexpr int kSimulationFailed = 3;
-
-/// Exit status of a run cancelled by SIGINT (Ctrl-C; 128 + 2, as shells report it): it stops
-/// at the next load step, settle or refinement, and summary.json says "cancelled".
-constexpr int kCancelled = 130;
 
 /// Options of `progsim run SCENE --out DIR [--steps N] [--max-settles N] [--direct]
 /// [--preview-only] [--quiet]`.

@@ -95,13 +95,13 @@ StepRecord ProgressiveDynamics::step_preview() {
   StepRecord step = preview_->step();
   trajectories_[0].append(preview_->dofs(), preview_->velocities());
   DynamicLevelRecord& record = records_[0];
-  add_step(record, step, 0.0, 0.0);
+  add_dynamic_step(record, step, 0.0, 0.0);
   record.terms = preview_->term_totals();
   return step;
 }
 
-void ProgressiveDynamics::add_step(DynamicLevelRecord& record, const StepRecord& step,
-                                   double com_deviation, double consistency) {
+void add_dynamic_step(DynamicLevelRecord& record, const StepRecord& step, double com_deviation,
+                      double consistency) {
   DynamicStepRecord r;
   r.step = step.step;
   r.time = step.time;
@@ -179,7 +179,7 @@ void ProgressiveDynamics::refine(const RefineProgress& progress) {
     frames.append(sim->dofs(), sim->velocities());
     const Vec3 preview_com = records_[0].steps[t].motion.center_of_mass;
     const double deviation = step.motion ? (step.motion->center_of_mass - preview_com).norm() : 0.0;
-    add_step(record, step, deviation, projection.distance(sim->dofs(), x_next));
+    add_dynamic_step(record, step, deviation, projection.distance(sim->dofs(), x_next));
     if (progress && !progress(t + 1, steps))
       fail(Status::cancelled, "refining level " + std::to_string(coarse) + " into level " +
                                   std::to_string(fine) + " was cancelled at step " +

@@ -45,6 +45,12 @@ struct DynamicLevelRecord {
   std::vector<DynamicStepRecord> steps;  ///< per step, in order (frame k + 1 after step k)
 };
 
+/// Adds a step's outcome to `record` with its metrics against other trajectories (the
+/// centre-of-mass deviation and the consistency; 0 where there is none), and counts its work.
+/// The direct baseline records its levels so too (progsim accuracy).
+void add_dynamic_step(DynamicLevelRecord& record, const StepRecord& step, double com_deviation,
+                      double consistency);
+
 /// Called during refine() after each step with (steps done, steps in all); returning false
 /// cancels the refinement.
 using RefineProgress = std::function<bool(int done, int total)>;
@@ -111,9 +117,6 @@ class ProgressiveDynamics {
   /// step to the tolerance, unlike PSQ's capped previews): the proxy energy below the finest
   /// level, the consistency penalty above the coarsest.
   std::unique_ptr<LevelSimulation> make_level(int level) const;
-  /// Adds a step's outcome (and its metrics against coarser levels) to `record`.
-  static void add_step(DynamicLevelRecord& record, const StepRecord& step, double com_deviation,
-                       double consistency);
   /// Throws Error(out_of_range) unless level `level` has been computed.
   void check_level(int level) const;
   /// Throws Error(wrong_call_order), naming `what`, once a finer level has been computed.

@@ -1,7 +1,6 @@
 #include "sim/step_record.hpp"
 
-#include <cmath>
-#include <nlohmann/json.hpp>
+#include "sim/record_json.hpp"
 
 namespace progsim {
 
@@ -35,29 +34,10 @@ std::string to_json_line(const StepRecord& r) {
                          {"script_reached", r.script_reached},
                          {"change_rms", r.change_rms},
                          {"equilibrium", r.equilibrium}};
-  if (r.contact) {
-    const ContactStats& c = *r.contact;
-    line["contact"] = {
-        {"broad_phase_runs", c.broad_phase_runs},
-        {"candidate_pairs", c.candidate_pairs},
-        {"active_pairs", c.active_pairs},
-        {"ccd_calls", c.ccd_calls},
-        {"stiffness_updates", c.stiffness_updates},
-        {"min_gap", std::isfinite(c.min_gap) ? nlohmann::json(c.min_gap) : nlohmann::json(nullptr)},
-        {"broad_phase_seconds", c.broad_phase_seconds},
-        {"ccd_seconds", c.ccd_seconds},
-        {"assembly_seconds", c.assembly_seconds}};
-  }
+  if (r.contact) line["contact"] = contact_json(*r.contact);
   if (r.friction_contacts) line["friction_contacts"] = *r.friction_contacts;
   if (r.max_stretch) line["max_stretch"] = *r.max_stretch;
-  if (r.motion) {
-    const MotionRecord& m = *r.motion;
-    line["motion"] = {
-        {"kinetic_energy", m.kinetic_energy},
-        {"center_of_mass", {m.center_of_mass.x(), m.center_of_mass.y(), m.center_of_mass.z()}},
-        {"continuity_error", m.continuity_error},
-        {"continuity", m.continuity}};
-  }
+  if (r.motion) line["motion"] = motion_json(*r.motion);
   return line.dump();
 }
 

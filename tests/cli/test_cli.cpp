@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,8 @@
 #include "hierarchy/hierarchy_io.hpp"
 #include "mesh/intersection_check.hpp"
 #include "mesh/mesh_io.hpp"
+#include "progressive/progressive_simulation.hpp"
+#include "scene/scene_json.hpp"
 
 namespace fs = std::filesystem;
 extern char** environ;  // the environment a spawned progsim inherits
@@ -592,4 +595,195 @@ TEST_F(Cli, AccuracyWhoseFinestLevelDoesNotConvergeExits3) {
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("the accuracy run did not converge"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(out / "accuracy.csv"));
+}
+
+// ---- Progressive Dynamics through `progsim run` (issue 29, points 7 and 9) ----
+
+namespace {
+
+/// A 0.5 m cloth (9 × 9 vertices) held at two corners, swinging down under gravity for
+/// `steps` steps of 10 ms on three levels (about 12, 30 and 81 vertices), a frame every 5.
+std::string swinging_cloth(int steps) {
+  return R"({ "name": "swing", "effects": ["membrane", "bending", "gravity"],
+    "simulation": {"mode": "dynamic", "time_step": 0.01, "duration": )" +
+         std::to_string(steps * 0.01) + R"(, "output_every": 5},
+    "bodies": [{"name": "cloth",
+                "mesh": {"generator": "grid", "width": 0.5, "height": 0.5, "nx": 8, "ny": 8},
+                "material": {"youngs_modulus": 1e5, "thickness": 5e-4, "density": 300}}],
+    "handles": [{"body": 0, "vertices": [0, 8]}],
+    "progressive": {"levels": [12, 30]} })";
+}
+
+/// The lines of `out`/steps.jsonl.
+std::vector<nlohmann::json> read_log(const fs::path& out) {
+  std::ifstream log(out / "steps.jsonl");
+  std::vector<nlohmann::json> lines;
+  for (std::string line; std::getline(log, line);) lines.push_back(nlohmann::json::parse(line));
+  return lines;
+}
+
+int obj_vertices(const fs::path& file) {
+  std::ifstream obj(file);
+  int vertices = 0;
+  for (std::string line; std::getline(obj, line);) vertices += line.rfind("v ", 0) == 0;
+  return vertices;
+}
+
+}  // namespace
+
+TEST_F(Cli, ProgressiveDynamicsRunWritesEveryLevelsStepsFramesSummaryAndPlots) {
+  const fs::path scene = write("swing.json", swinging_cloth(10));
+  const fs::path out = dir_ / "swing";
+  const CommandResult r = run_cli("run " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("(preview, level 0)"), std::string::npos) << r.output;  // a bar
+  EXPECT_NE(r.output.find("(level 2)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("progressive dynamics, 10 steps"), std::string::npos) << r.output;
+  const progsim::MeshHierarchy hierarchy =
+      progsim::build_scene_hierarchy(progsim::load_scene_file(scene.string()));
+  ASSERT_EQ(hierarchy.num_levels(), 3);
+  // steps.jsonl: every level's steps in order, each with the level and its metrics.
+  const std::vector<nlohmann::json> lines = read_log(out);
+  ASSERT_EQ(lines.size(), 30u);
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const nlohmann::json& line = lines[k];
+    SCOPED_TRACE(line.dump());
+    EXPECT_EQ(line.at("level").get<int>(), static_cast<int>(k / 10));
+    EXPECT_EQ(line.at("step").get<int>(), static_cast<int>(k % 10) + 1);
+    EXPECT_NEAR(line.at("time").get<double>(), 0.01 * (k % 10 + 1), 1e-12);
+    EXPECT_GT(line.at("motion").at("kinetic_energy").get<double>(), 0.0);
+    EXPECT_EQ(line.at("motion").at("center_of_mass").size(), 3u);
+    for (const char* key : {"com_deviation", "consistency", "newton_iterations", "converged"})
+      EXPECT_TRUE(line.contains(key)) << key;
+    EXPECT_TRUE(line.at("motion").contains("continuity"));
+    if (k < 10) EXPECT_EQ(line.at("com_deviation").get<double>(), 0.0);  // the preview itself
+  }
+  // summary.json: one row per level, its size the hierarchy's; frames on each level's mesh.
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "ok");
+  EXPECT_EQ(summary.at("method"), "progressive dynamics");
+  EXPECT_EQ(summary.at("last_good_level").get<int>(), 2);
+  const auto& levels = summary.at("levels");
+  ASSERT_EQ(levels.size(), 3u);
+  for (int l = 0; l < 3; ++l) {
+    SCOPED_TRACE("level " + std::to_string(l));
+    const int vertices = hierarchy.levels[l].rest.num_vertices();
+    EXPECT_EQ(levels[l].at("vertices").get<int>(), vertices);
+    EXPECT_EQ(levels[l].at("converged_steps").get<int>(), 10);
+    EXPECT_GT(levels[l].at("wall_seconds").get<double>(), 0.0);
+    EXPECT_GT(levels[l].at("newton_iterations").get<int>(), 0);
+    for (const char* key :
+         {"max_com_deviation", "mean_com_deviation", "mean_continuity", "max_consistency"})
+      EXPECT_TRUE(std::isfinite(levels[l].at(key).get<double>())) << key;
+    const fs::path folder = out / ("level_" + std::to_string(l));
+    for (const char* frame : {"frame_00000.obj", "frame_00005.obj", "frame_00010.obj"})
+      EXPECT_EQ(obj_vertices(folder / frame), vertices) << frame;
+    EXPECT_FALSE(fs::exists(folder / "frame_00003.obj"));
+  }
+  EXPECT_GT(levels[2].at("max_com_deviation").get<double>(), 0.0);  // measured, not zero
+  for (const char* plot : {"kinetic_energy.png", "center_of_mass_height.png", "com_deviation.png",
+                           "time_by_level.png"})
+    EXPECT_TRUE(fs::is_regular_file(out / plot)) << plot;
+  expect_summary_written_last(out);
+}
+
+TEST_F(Cli, ProgressiveDynamicsPreviewOnlyAnimatesLevel0Alone) {
+  const fs::path out = dir_ / "swing";
+  const CommandResult r = run_cli("run " + write("swing.json", swinging_cloth(6)).string() +
+                                  " --out " + out.string() + " --quiet --preview-only");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "ok");
+  EXPECT_TRUE(summary.at("preview_only").get<bool>());
+  EXPECT_EQ(summary.at("levels").size(), 1u);
+  EXPECT_EQ(read_log(out).size(), 6u);
+  EXPECT_TRUE(fs::exists(out / "level_0" / "frame_00006.obj"));
+  EXPECT_FALSE(fs::exists(out / "level_1"));
+}
+
+TEST_F(Cli, ProgressiveDynamicsWhoseLastLevelDoesNotConvergeExits3) {
+  std::string text = swinging_cloth(4);
+  text.replace(text.find(R"("effects")"), 9,
+               R"("solver": {"max_newton_iterations": 1}, "effects")");
+  const fs::path out = dir_ / "swing";
+  const CommandResult r =
+      run_cli("run " + write("swing.json", text).string() + " --out " + out.string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("did not converge: level 2:"), std::string::npos) << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "not_converged");
+  EXPECT_EQ(summary.at("levels").size(), 3u);
+  EXPECT_EQ(summary.at("last_good_step").get<int>(), 4);
+}
+
+TEST_F(Cli, AnInterruptedProgressiveDynamicsRunExits130WithACancelledSummaryLast) {
+  const fs::path out = dir_ / "drape";
+  ASSERT_EQ(run_then_interrupt(source_scene("pd_drape"), out, nullptr), 130);
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "cancelled");
+  EXPECT_EQ(summary.at("method"), "progressive dynamics");
+  EXPECT_NE(summary.at("message").get<std::string>().find("interrupted (SIGINT)"),
+            std::string::npos);
+  EXPECT_LT(summary.at("last_good_step").get<int>(), 100);
+  expect_summary_written_last(out);
+}
+
+class CliPdScenes : public Cli, public ::testing::WithParamInterface<const char*> {};
+
+/// The bundled Progressive Dynamics scenes at a reduced size (fewer vertices and steps, edited
+/// as the PSQ scene tests do) run through the CLI on every level: finite, converged steps.
+TEST_P(CliPdScenes, RunThroughEveryLevelWithFiniteConvergedSteps) {
+  const std::string name = GetParam();
+  std::string text = read_text(source_scene(name));
+  for (const std::string side : {"\"nx\": ", "\"ny\": "}) {
+    const std::size_t at = text.find(side);
+    ASSERT_NE(at, std::string::npos) << side;
+    text.replace(at, side.size() + 2, side + "12");  // a 13 × 13 sheet
+  }
+  const fs::path out = dir_ / name;
+  const CommandResult r = run_cli("run " + write(name + ".json", text).string() + " --out " +
+                                  out.string() + " --quiet --steps 12");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::cout << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "ok");
+  ASSERT_EQ(summary.at("levels").size(), 3u);
+  for (const auto& level : summary.at("levels")) {
+    EXPECT_EQ(level.at("converged_steps").get<int>(), 12) << level;
+    EXPECT_TRUE(std::isfinite(level.at("max_com_deviation").get<double>())) << level;
+  }
+  const std::vector<nlohmann::json> lines = read_log(out);
+  EXPECT_EQ(lines.size(), 36u);
+  for (const nlohmann::json& line : lines) {
+    EXPECT_TRUE(line.at("converged").get<bool>()) << line;
+    EXPECT_TRUE(std::isfinite(line.at("motion").at("kinetic_energy").get<double>())) << line;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BundledScenes, CliPdScenes,
+                         ::testing::Values("pd_drape", "pd_cube_on_sheet", "pd_spin_cycle"));
+
+TEST_F(Cli, AccuracyOnADynamicSceneAnimatesEveryLevelProgressivelyAndDirectly) {
+  const fs::path out = dir_ / "swing";
+  const CommandResult r = run_cli("accuracy " + write("swing.json", swinging_cloth(8)).string() +
+                                  " --out " + out.string() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("| direct | 2 |"), std::string::npos) << r.output;
+  std::ifstream csv(out / "accuracy.csv");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(csv, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 7u);  // header, 3 progressive levels, 3 direct levels
+  EXPECT_EQ(lines[1].rfind("progressive,0,", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[6].rfind("direct,2,", 0), 0u) << lines[6];
+  std::ifstream trajectories(out / "trajectories.csv");
+  int steps = -1;  // the header
+  for (std::string line; std::getline(trajectories, line);) ++steps;
+  EXPECT_EQ(steps, 6 * 8);
+  for (const char* plot : {"kinetic_energy.png", "center_of_mass_height.png", "com_deviation.png",
+                           "time_by_level.png"})
+    EXPECT_TRUE(fs::is_regular_file(out / plot)) << plot;
+  const CommandResult refused = run_cli("accuracy " + (dir_ / "swing.json").string() + " --out " +
+                                        (dir_ / "x").string() + " --direct-levels 0");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_FALSE(fs::exists(dir_ / "x"));
 }

@@ -1,0 +1,17 @@
+#pragma once
+/// @file Parts of a step's log line as JSON, shared by every log that reports them.
+#include <nlohmann/json.hpp>
+
+#include "contact/contact_stats.hpp"
+#include "sim/step_record.hpp"
+
+namespace progsim {
+
+/// A step's contact counters (min_gap null when no pair was near).
+nlohmann::json contact_json(const ContactStats& contact);
+
+/// A dynamic step's motion: kinetic energy, centre of mass [x, y, z], continuity error and
+/// continuity.
+nlohmann::json motion_json(const MotionRecord& motion);
+
+}  // namespace progsim
