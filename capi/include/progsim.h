@@ -648,7 +648,8 @@ typedef struct ps_step_stats {
   double seconds;            /**< wall time of the step, s */
   double kinetic_energy;     /**< ½ vᵀ M v after the step, J (the level's masses) */
   double center_of_mass[3];  /**< Σ m x / Σ m after the step, m */
-  /** ‖CoM − CoM of the preview‖ at the same time, m (PD Fig. 19); 0 on level 0 */
+  /** how far the centre of mass has moved away from the preview's since frame 0, m:
+   *  ‖(CoM − CoM⁰) − (CoM_preview − CoM_preview⁰)‖ (PD Fig. 19); 0 on level 0 */
   double com_deviation;
   /** VPD App. C eq. 18: continuity_error over the step's own solve residual, dimensionless
    *  (≤ 1 for implicit Euler on the level alone, larger where the prediction jumps) */

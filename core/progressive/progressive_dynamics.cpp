@@ -74,8 +74,7 @@ void ProgressiveDynamics::restart() {
   auto preview = make_level(0);
   Trajectory frames(preview->model().rest.num_vertices());
   frames.append(preview->dofs(), preview->velocities());
-  DynamicLevelRecord record;
-  record.vertices = preview->model().rest.num_vertices();
+  DynamicLevelRecord record = start_record(*preview);
   preview_ = std::move(preview);
   trajectories_.clear();
   trajectories_.push_back(std::move(frames));
@@ -98,6 +97,20 @@ StepRecord ProgressiveDynamics::step_preview() {
   add_dynamic_step(record, step, 0.0, 0.0);
   record.terms = preview_->term_totals();
   return step;
+}
+
+DynamicLevelRecord start_record(const LevelSimulation& sim) {
+  DynamicLevelRecord record;
+  record.vertices = sim.model().rest.num_vertices();
+  record.start_center_of_mass = sim.center_of_mass();
+  return record;
+}
+
+double com_deviation(const Vec3& com, const DynamicLevelRecord& level,
+                     const DynamicLevelRecord& reference, int t) {
+  const Vec3 reference_moved =
+      reference.steps.at(t).motion.center_of_mass - reference.start_center_of_mass;
+  return ((com - level.start_center_of_mass) - reference_moved).norm();
 }
 
 void add_dynamic_step(DynamicLevelRecord& record, const StepRecord& step, double com_deviation,
@@ -168,8 +181,7 @@ void ProgressiveDynamics::refine(const RefineProgress& progress) {
   frames.append(sim->dofs(), sim->velocities());
   const ConsistencyProjection projection(p.intrinsic(), sim->model().vertex_masses,
                                          masses_[coarse]);
-  DynamicLevelRecord record;
-  record.vertices = sim->model().rest.num_vertices();
+  DynamicLevelRecord record = start_record(*sim);
   for (int t = 0; t < steps; ++t) {
     from.read(t + 1, x_next, v_next);
     StepTargets targets;
@@ -177,8 +189,8 @@ void ProgressiveDynamics::refine(const RefineProgress& progress) {
     if (scene_.progressive.consistency_weight > 0.0) targets.consistency = prolong(p, x_next);
     const StepRecord step = sim->step(targets);  // PD eq. 6
     frames.append(sim->dofs(), sim->velocities());
-    const Vec3 preview_com = records_[0].steps[t].motion.center_of_mass;
-    const double deviation = step.motion ? (step.motion->center_of_mass - preview_com).norm() : 0.0;
+    const double deviation =
+        step.motion ? com_deviation(step.motion->center_of_mass, record, records_[0], t) : 0.0;
     add_dynamic_step(record, step, deviation, projection.distance(sim->dofs(), x_next));
     if (progress && !progress(t + 1, steps))
       fail(Status::cancelled, "refining level " + std::to_string(coarse) + " into level " +

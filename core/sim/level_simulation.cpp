@@ -391,18 +391,19 @@ StepRecord LevelSimulation::solve_at(double t, bool new_step, const StepTargets&
   return record;
 }
 
+Vec3 LevelSimulation::center_of_mass() const {
+  const Eigen::VectorXd& m = model_.vertex_masses;
+  return (m.transpose() * as_positions(x_)).transpose() / m.sum();
+}
+
 MotionRecord LevelSimulation::motion(const Vector& older, const Vector& before,
                                      const Vector& predicted) {
   const Eigen::VectorXd& m = model_.vertex_masses;
   const double h = scene_.time_step;
   MotionRecord out;
-  double mass = 0.0;
-  for (Eigen::Index i = 0; i < m.size(); ++i) {
+  for (Eigen::Index i = 0; i < m.size(); ++i)
     out.kinetic_energy += 0.5 * m[i] * v_.segment<3>(3 * i).squaredNorm();  // ½ vᵀMv
-    out.center_of_mass += m[i] * x_.segment<3>(3 * i);
-    mass += m[i];
-  }
-  out.center_of_mass /= mass;
+  out.center_of_mass = center_of_mass();
   // VPD App. C eqs. 17–18 (PD++): the midpoint estimate from implicit Euler as a boundary value
   // problem, with h²M⁻¹f(xᵗ⁺¹) = xᵗ⁺¹ − x̂ − h²M⁻¹∇E read from the solve.
   gradient_.resize(x_.size());

@@ -103,6 +103,8 @@ class LevelSimulation {
   Eigen::Map<const Positions> positions() const { return as_positions(x_); }
   /// Current DOFs (3|V|).
   const Vector& dofs() const { return x_; }
+  /// Σ m x / Σ m over the level's vertices now (m), with the level's masses.
+  Vec3 center_of_mass() const;
   /// Current velocities (3|V|), m/s (zero for quasistatic scenes).
   const Vector& velocities() const { return v_; }
   const ShellModel& model() const { return model_; }

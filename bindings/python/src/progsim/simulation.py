@@ -240,7 +240,7 @@ def _step_stats_dtype() -> np.dtype:
 #: ``step`` (1-based: the step from frame step − 1 to frame step), ``newton_iterations``,
 #: ``converged`` (1 if the Newton solve met the tolerance), ``time`` (s, after the step),
 #: ``seconds`` (wall time), ``kinetic_energy`` (J), ``center_of_mass`` (3 floats, m),
-#: ``com_deviation`` (m, from the preview at the same time, PD Fig. 19), ``continuity``
+#: ``com_deviation`` (m, how far the centre of mass moved away from the preview's since frame 0, PD Fig. 19), ``continuity``
 #: (VPD App. C eq. 18, dimensionless), ``continuity_error`` (eq. 17, m) and ``consistency``
 #: (eq. 19, m).
 STEP_STATS_DTYPE: np.dtype = _step_stats_dtype()

@@ -82,8 +82,8 @@ pub struct StepStats {
     pub kinetic_energy: f64,
     /// Σ m x / Σ m after the step, m.
     pub center_of_mass: [f64; 3],
-    /// Distance of the centre of mass from the preview's at the same time, m (PD Fig. 19); 0
-    /// on level 0.
+    /// How far the centre of mass has moved away from the preview's since frame 0, m (PD
+    /// Fig. 19); 0 on level 0.
     pub com_deviation: f64,
     /// VPD App. C eq. 18: the continuity error over the step's own solve residual
     /// (dimensionless; ≤ 1 for implicit Euler on the level alone).
