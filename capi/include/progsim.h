@@ -267,6 +267,7 @@ typedef enum ps_effect {
   PS_EFFECT_CONTACT = 1 << 4,      /**< IPC barrier self-contact with CCD; intersection-free */
   PS_EFFECT_FRICTION = 1 << 5,     /**< Coulomb friction on contacts (with material_friction > 0) */
   PS_EFFECT_STRAIN_LIMIT = 1 << 6, /**< barrier keeping stretches below material_strain_limit */
+  PS_EFFECT_WIND = 1 << 7,         /**< aerodynamic drag and lift of ps_sim_def's wind (dynamic) */
   PS_EFFECT_FORCE32 = 0x7fffffff
 } ps_effect;
 
@@ -314,6 +315,17 @@ typedef struct ps_sim_def {
   const int32_t* pinned_vertices;
   size_t num_pinned_vertices; /**< entries in pinned_vertices; default 0 */
   int32_t internal_cookie;    /**< set by ps_sim_def_init(); do not touch */
+  /* The wind (PS_EFFECT_WIND; dynamic only): per face, drag ½ ρ C_d A |u·n| (u·n) n and lift
+   * across u = wind − face velocity (scenes/README.md, "Wind"). */
+  double wind_density;     /**< ρ, kg/m³, (0, 1e4]; default 1.2 */
+  double wind_drag;        /**< C_d, 1, [0, 100]; default 1.2 */
+  double wind_lift;        /**< C_L, 1, [0, 100]; default 0 (no lift) */
+  double wind_velocity[3]; /**< m/s; default (0, 0, 0): still air, drag only */
+  /** Gusts: num_wind_keyframes rows (time s, vx, vy, vz m/s), times increasing, the wind linear
+   *  between them and held outside them; they replace wind_velocity. Nullable; borrowed during
+   *  create. */
+  const double* wind_keyframes;
+  size_t num_wind_keyframes; /**< rows in wind_keyframes; default 0 */
 } ps_sim_def;
 
 /** Fills def with the defaults above. def must not be NULL. */

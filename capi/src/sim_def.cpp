@@ -8,7 +8,7 @@ namespace {
 constexpr int32_t kSimCookie = 0x50535344;  // "PSSD"
 constexpr uint32_t kAllEffects = PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_GRAVITY |
                                  PS_EFFECT_PRESSURE | PS_EFFECT_CONTACT | PS_EFFECT_FRICTION |
-                                 PS_EFFECT_STRAIN_LIMIT;
+                                 PS_EFFECT_STRAIN_LIMIT | PS_EFFECT_WIND;
 }  // namespace
 
 uint32_t effect_bits(const EffectSet& effects) {
@@ -70,6 +70,14 @@ Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh) {
   scene.effects = effects_from_bits(def.effects);
   scene.gravity = Vec3(def.gravity[0], def.gravity[1], def.gravity[2]);
   set_scene_parameter(scene, "pressure", def.pressure);
+  scene.wind.velocity = Vec3(def.wind_velocity[0], def.wind_velocity[1], def.wind_velocity[2]);
+  if (def.num_wind_keyframes > 0) {
+    require(def.wind_keyframes, "def.wind_keyframes (with num_wind_keyframes > 0)");
+    for (std::size_t k = 0; k < def.num_wind_keyframes; ++k) {
+      const double* row = def.wind_keyframes + 4 * k;
+      scene.wind.keyframes.push_back({row[0], Vec3(row[1], row[2], row[3])});
+    }
+  }
   if (def.num_pinned_vertices > 0) {
     require(def.pinned_vertices, "def.pinned_vertices (with num_pinned_vertices > 0)");
     Handle pinned;

@@ -20,6 +20,8 @@ const char* effect_name(Effect e) {
       return "friction";
     case Effect::strain_limit:
       return "strain_limit";
+    case Effect::wind:
+      return "wind";
     case Effect::count_:
       break;
   }

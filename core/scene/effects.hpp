@@ -14,6 +14,7 @@ enum class Effect : unsigned {
   contact,       ///< IPC barrier contact (self, between bodies, obstacles, ground) with CCD
   friction,      ///< lagged smoothed Coulomb friction on contacts (needs contact; μ > 0)
   strain_limit,  ///< barrier on membrane stretches above material.strain_limit
+  wind,          ///< aerodynamic drag and lift of a wind on every face (dynamic scenes)
   count_,
 };
 

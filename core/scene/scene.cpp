@@ -15,6 +15,18 @@ Vec3 HandleMotion::position(const Vec3& rest, double t) const {
   return center + rotation * (rest - center) + velocity * t + offset;
 }
 
+Vec3 WindSettings::at(double t) const {
+  if (keyframes.empty()) return velocity;
+  if (t <= keyframes.front().time) return keyframes.front().velocity;
+  for (std::size_t k = 1; k < keyframes.size(); ++k)
+    if (t < keyframes[k].time) {
+      const WindKeyframe &a = keyframes[k - 1], &b = keyframes[k];
+      const double s = (t - a.time) / (b.time - a.time);
+      return (1.0 - s) * a.velocity + s * b.velocity;
+    }
+  return keyframes.back().velocity;  // held after the last
+}
+
 int Scene::num_steps() const {
   return std::max(1, static_cast<int>(std::lround(duration / time_step)));
 }
@@ -102,6 +114,32 @@ void validate_progressive(const ProgressiveSettings& p) {
                                       " vertices is too small (at least 4)");
 }
 
+/// Ranges of the air, finite velocities, keyframe times increasing; wind only in dynamic scenes:
+/// a quasistatic step has no velocity, so the drag would be a follower load of the normals the
+/// solve moves, with no potential energy to minimise.
+void validate_wind(const Scene& scene) {
+  const WindSettings& w = scene.wind;
+  check("wind", "density", w.density);
+  check("wind", "drag", w.drag);
+  check("wind", "lift", w.lift);
+  if (!w.velocity.allFinite())
+    fail(Status::invalid_scene, "wind.velocity has a non-finite component");
+  for (std::size_t k = 0; k < w.keyframes.size(); ++k) {
+    const std::string where = "wind.keyframes[" + std::to_string(k) + "]";
+    const WindKeyframe& key = w.keyframes[k];
+    if (!std::isfinite(key.time) || key.time < 0.0)
+      fail(Status::invalid_scene, where + ".time must be a finite number >= 0");
+    if (k > 0 && !(key.time > w.keyframes[k - 1].time))
+      fail(Status::invalid_scene, where + ".time must be later than the keyframe before it");
+    if (!key.velocity.allFinite())
+      fail(Status::invalid_scene, where + ".velocity has a non-finite component");
+  }
+  if (scene.effects.has(Effect::wind) && scene.mode == StepMode::quasistatic)
+    fail(Status::invalid_scene,
+         "the 'wind' effect needs a dynamic scene: its drag depends on the velocity, which a "
+         "quasistatic step does not have");
+}
+
 /// What pulls a body in a quasistatic scene ("gravity", "pressure on its open surface"), or
 /// an empty string when its loads cancel (none, or pressure on a closed surface).
 std::string net_load(const Scene& scene, const Body& body) {
@@ -163,6 +201,7 @@ void validate_scene(const Scene& scene) {
   for (std::size_t h = 0; h < scene.handles.size(); ++h) validate_handle(scene, h);
   validate_contact(scene);
   validate_progressive(scene.progressive);
+  validate_wind(scene);
   validate_held(scene);
 }
 

@@ -73,6 +73,27 @@ struct ContactSettings {
   bool crossing_start = false;
 };
 
+/// The wind at one time of a gust.
+struct WindKeyframe {
+  double time = 0.0;             ///< s
+  Vec3 velocity = Vec3::Zero();  ///< m/s
+};
+
+/// The wind effect: aerodynamic drag and lift of the air on every face (WindForce), dynamic
+/// scenes only.
+struct WindSettings {
+  Vec3 velocity = Vec3::Zero();  ///< m/s, the wind when there are no keyframes
+  double density = 1.2;          ///< ρ of the air (kg/m³)
+  double drag = 1.2;             ///< C_d of the normal pressure drag (1)
+  double lift = 0.0;             ///< C_L of the lift across the relative wind (1); 0: none
+  /// Gusts: the wind at increasing times, linear between them, held before the first and after
+  /// the last; empty: `velocity` at all times.
+  std::vector<WindKeyframe> keyframes;
+
+  /// The wind at time t (s), m/s.
+  Vec3 at(double t) const;
+};
+
 /// Vertices of one body held on a scripted trajectory (Dirichlet boundary condition).
 struct Handle {
   int body = 0;               ///< index into Scene::bodies
@@ -164,6 +185,7 @@ struct Scene {
   std::vector<Obstacle> obstacles;  ///< collision objects (need the contact effect)
   Ground ground;                    ///< analytic ground (needs the contact effect)
   ContactSettings contact;
+  WindSettings wind;  ///< used when the wind effect is enabled
   NewtonSettings solver;
   ProgressiveSettings progressive;
 

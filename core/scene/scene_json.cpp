@@ -313,6 +313,36 @@ void solver(const Json& j, Scene& scene) {
   scene.solver.extrapolate = parameter(j, "solver", "line_search_extrapolation", "solver") != 0.0;
 }
 
+WindKeyframe wind_keyframe(const Json& j, const std::string& where) {
+  expect_keys(j, where, {"time", "velocity"});
+  return {number(require(j, "time", where), where + ".time"),
+          vec3(require(j, "velocity", where), where + ".velocity")};
+}
+
+/// The "wind" section: a constant "velocity" or gusts as "keyframes", and the air's coefficients.
+WindSettings wind(const Json& j, const Scene& scene) {
+  const std::string where = "wind";
+  expect_keys(j, where, {"velocity", "keyframes", "density", "drag", "lift"});
+  if (!scene.effects.has(Effect::wind))
+    scene_error(where, "the scene has a 'wind' section but does not enable the 'wind' effect");
+  if (j.contains("velocity") && j.contains("keyframes"))
+    scene_error(where, "give either 'velocity' (a steady wind) or 'keyframes' (gusts), not both");
+  WindSettings w;
+  w.velocity = vec3_or(j, "velocity", w.velocity, where);
+  w.density = parameter(j, "wind", "density", where);
+  w.drag = parameter(j, "wind", "drag", where);
+  w.lift = parameter(j, "wind", "lift", where);
+  if (j.contains("keyframes")) {
+    const Json& keys = j.at("keyframes");
+    if (!keys.is_array() || keys.empty())
+      scene_error(where + ".keyframes", "must be a non-empty array of {\"time\", \"velocity\"}");
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      w.keyframes.push_back(
+          wind_keyframe(keys[k], where + ".keyframes[" + std::to_string(k) + "]"));
+  }
+  return w;
+}
+
 /// The option j[key] names among `known` (name, value), the first when j has no key;
 /// scene_error naming the known ones otherwise.
 template <typename Enum>
@@ -373,7 +403,7 @@ ProgressiveSettings progressive(const Json& j) {
 Scene scene_from_json(const Json& root, const std::string& base_dir) {
   expect_keys(root, "scene",
               {"name", "simulation", "gravity", "effects", "solver", "bodies", "handles", "contact",
-               "obstacles", "ground", "progressive"});
+               "obstacles", "ground", "progressive", "wind"});
   Scene scene;
   scene.name = root.value("name", std::string("scene"));
   simulation(root.contains("simulation") ? root.at("simulation") : Json::object(), scene);
@@ -406,6 +436,7 @@ Scene scene_from_json(const Json& root, const std::string& base_dir) {
           obstacle(obstacles[k], "obstacles[" + std::to_string(k) + "]", base_dir));
   }
   if (root.contains("ground")) scene.ground = ground(root.at("ground"));
+  if (root.contains("wind")) scene.wind = wind(root.at("wind"), scene);
   validate_scene(scene);
   return scene;
 }

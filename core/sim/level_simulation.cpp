@@ -10,6 +10,7 @@
 #include "energy/inertia.hpp"
 #include "energy/pressure.hpp"
 #include "energy/prolonged_elastics.hpp"
+#include "energy/wind_force.hpp"
 #include "mesh/intersection_check.hpp"
 #include "sim/contact_setup.hpp"
 #include "sim/obstacle_script.hpp"
@@ -119,6 +120,10 @@ void LevelSimulation::build_problem() {
   if (scene_.mode == StepMode::dynamic && level_.consistency_weight > 0.0)  // VPD eq. 4
     penalty = &problem->add_term(std::make_unique<ConsistencyPenalty>(
         model_.vertex_masses, level_.consistency_weight, scene_.time_step));
+  const AirCoefficients air{scene_.wind.density, scene_.wind.drag, scene_.wind.lift};
+  WindForce* wind = fx.has(Effect::wind)
+                        ? &problem->add_term(std::make_unique<WindForce>(model_.rest.faces, n, air))
+                        : nullptr;
   ContactPotential* contact = fx.has(Effect::contact) ? &add_contact(*problem) : nullptr;
   FrictionPotential* friction = nullptr;
   if (contact && fx.has(Effect::friction))
@@ -137,6 +142,7 @@ void LevelSimulation::build_problem() {
   penalty_ = penalty;
   pressures_ = std::move(pressures);
   contact_ = contact;
+  wind_ = wind;
   friction_ = friction;
   friction_lagged_ = false;
   strain_limit_ = strain_limit;
@@ -357,6 +363,7 @@ StepRecord LevelSimulation::solve_at(double t, bool new_step, const StepTargets&
   if (inertia_)
     inertia_->set_target(targets.predicted.size() > 0 ? targets.predicted : Vector(x_ + h * v_));
   if (penalty_) penalty_->set_target(targets.consistency);
+  if (wind_) wind_->lag(x_, v_, h, scene_.wind.at(t));  // forces at the step's end time
   if (contact_) contact_->reset_min_gap();
   const ContactStats contact_before = contact_ ? contact_->stats() : ContactStats{};
   // Lagged friction (IPC §5): frozen at the step's start, or at the first solve after a rebuild.
@@ -387,6 +394,7 @@ StepRecord LevelSimulation::solve_at(double t, bool new_step, const StepTargets&
   if (contact_) record.contact = contact_->stats().since(contact_before);
   if (friction_) record.friction_contacts = friction_->num_contacts();
   if (strain_limit_) record.max_stretch = strain_limit_->max_stretch(x_);
+  if (wind_) record.wind = WindRecord{wind_->wind(), wind_->total_force(x_)};
   record.seconds = timer.seconds();
   return record;
 }

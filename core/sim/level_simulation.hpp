@@ -22,6 +22,7 @@ class Pressure;
 class ContactPotential;
 class FrictionPotential;
 class StrainLimit;
+class WindForce;
 class ObstacleScript;
 class ProlongedElastics;
 
@@ -174,6 +175,7 @@ class LevelSimulation {
   ContactPotential* contact_ = nullptr;    // owned by problem_, null without contact
   FrictionPotential* friction_ = nullptr;  // owned by problem_, null without friction
   StrainLimit* strain_limit_ = nullptr;    // owned by problem_, null without a limit
+  WindForce* wind_ = nullptr;              // owned by problem_, null without wind
   ProlongedElastics* proxy_ = nullptr;     // owned by problem_, null for direct solves
   Inertia* penalty_ = nullptr;             // owned by problem_, null without consistency penalty
   HandleTargets finest_handles_;           // the finest level's handles, held exactly by proxy_

@@ -27,6 +27,12 @@ struct MotionRecord {
   double continuity = 0.0;
 };
 
+/// The wind effect during a step.
+struct WindRecord {
+  Vec3 velocity = Vec3::Zero();  ///< the wind w the step used (at its end time), m/s
+  Vec3 force = Vec3::Zero();     ///< drag and lift on the whole shell after the step (N)
+};
+
 /// Report of one step: solver outcome, per-term counters for this step only, wall time.
 struct StepRecord {
   int step = 0;                  ///< 1-based index of the step just taken
@@ -40,6 +46,8 @@ struct StepRecord {
   std::optional<int> friction_contacts;
   /// With the strain-limit effect: the largest membrane stretch after the step.
   std::optional<double> max_stretch;
+  /// With the wind effect: the wind and its force.
+  std::optional<WindRecord> wind;
   /// Fraction of the handles' and obstacles' scripted motion reached this step (1: all; less
   /// when contact kept them from reaching it safely).
   double script_reached = 1.0;

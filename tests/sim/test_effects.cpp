@@ -64,3 +64,25 @@ TEST(Effects, ScriptedHandleFollowsItsRigidMotion) {
   const Vec3 expected = Eigen::AngleAxisd(t, Vec3::UnitY()) * rest + Vec3(0, 0.1 * t, 0);
   EXPECT_LT((sim.positions().row(0).transpose() - expected).norm(), 1e-14);
 }
+
+TEST(Effects, WindTermAndItsRecordExistOnlyWhenAsked) {
+  Scene still = scene_with({Effect::membrane, Effect::gravity}, StepMode::dynamic);
+  still.wind.velocity = Vec3(0, 0, 5);  // settings alone build nothing
+  LevelSimulation without(still);
+  const StepRecord off = without.step();
+  EXPECT_EQ(term_names(without), (std::vector<std::string>{"inertia", "membrane", "gravity"}));
+  EXPECT_FALSE(off.wind.has_value());
+  EXPECT_EQ(to_json_line(off).find("\"wind\""), std::string::npos);
+
+  still.effects.enable(Effect::wind);
+  LevelSimulation with(still);
+  const StepRecord on = with.step();
+  EXPECT_EQ(term_names(with), (std::vector<std::string>{"inertia", "membrane", "gravity", "wind"}));
+  const TermStats& wind = on.terms.back();
+  EXPECT_EQ(wind.name, "wind");
+  EXPECT_GT(wind.value_evaluations, 0);
+  EXPECT_GT(wind.gradient_evaluations, 0);
+  EXPECT_GT(wind.hessian_evaluations, 0);
+  ASSERT_TRUE(on.wind.has_value());
+  EXPECT_NE(to_json_line(on).find("\"wind\":{\"force\""), std::string::npos);
+}

@@ -62,6 +62,7 @@ EFFECTS: Dict[str, int] = {
     "contact": lib.PS_EFFECT_CONTACT,
     "friction": lib.PS_EFFECT_FRICTION,
     "strain_limit": lib.PS_EFFECT_STRAIN_LIMIT,
+    "wind": lib.PS_EFFECT_WIND,
 }
 
 #: Step modes and their ``ps_mode`` values.
@@ -285,6 +286,20 @@ def _effect_bits(effects: Union[str, Iterable[str]]) -> int:
     return bits
 
 
+def _wind_keyframes(value: Any) -> np.ndarray:
+    """Wind keyframes as a C-contiguous float64 (k, 4) array: time, wx, wy, wz."""
+    try:
+        array = np.ascontiguousarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise InvalidArgumentError(f"wind_keyframes must be real numbers, got {value!r}") from None
+    if array.ndim != 2 or array.shape[1] != 4 or array.shape[0] == 0:
+        raise InvalidArgumentError(
+            "wind_keyframes must have shape (k, 4) with k >= 1 (time, wx, wy, wz), "
+            f"got {array.shape}"
+        )
+    return array
+
+
 def _parameter_name(name: str) -> bytes:
     if not isinstance(name, str):
         raise InvalidArgumentError(f"a parameter name must be a str, got {name!r}")
@@ -334,6 +349,11 @@ class Simulation(NativeObject):
         gravity: Optional[Sequence[float]] = None,
         pressure: Optional[float] = None,
         pinned: Optional[Sequence[int]] = None,
+        wind: Optional[Sequence[float]] = None,
+        wind_keyframes: Optional[Any] = None,
+        wind_density: Optional[float] = None,
+        wind_drag: Optional[float] = None,
+        wind_lift: Optional[float] = None,
     ) -> None:
         """Creates a simulation of ``hierarchy``, at rest on level 0.
 
@@ -381,6 +401,14 @@ class Simulation(NativeObject):
             gravity: (gx, gy, gz), m/s²; default (0, -9.81, 0).
             pressure: Pa, applied when the ``pressure`` effect is on; default 0.
             pinned: finest-level vertex indices held still (they form handle 0).
+            wind: (wx, wy, wz), m/s, the steady wind of the ``wind`` effect (dynamic only);
+                default (0, 0, 0), still air.
+            wind_keyframes: gusts as rows (time s, wx, wy, wz m/s), shape (k, 4), times
+                increasing; the wind is linear between them and held outside them. Replaces
+                ``wind``.
+            wind_density: air density, kg/m³, in (0, 1e4]; default 1.2.
+            wind_drag: drag coefficient C_d of each face, in [0, 100]; default 1.2.
+            wind_lift: lift coefficient C_L of each face, in [0, 100]; default 0 (no lift).
 
         Raises:
             InvalidArgumentError: a value out of range, an unknown mode or effect.
@@ -427,6 +455,21 @@ class Simulation(NativeObject):
             definition.gravity = three_floats(gravity, "gravity")
         if pressure is not None:
             definition.pressure = real_value(pressure, "pressure")
+        if wind is not None:
+            definition.wind_velocity = three_floats(wind, "wind")
+        for keyword, value in (
+            ("wind_density", wind_density),
+            ("wind_drag", wind_drag),
+            ("wind_lift", wind_lift),
+        ):
+            if value is not None:
+                setattr(definition, keyword, real_value(value, keyword))
+        keyframe_buffer = None
+        if wind_keyframes is not None:
+            keyframes = _wind_keyframes(wind_keyframes)
+            keyframe_buffer = ffi.from_buffer("double[]", keyframes)
+            definition.wind_keyframes = keyframe_buffer
+            definition.num_wind_keyframes = keyframes.shape[0]
         pinned_buffer = None
         if pinned is not None:
             pinned_array = as_indices(pinned, "pinned", "(k,)")
@@ -440,7 +483,7 @@ class Simulation(NativeObject):
         with hierarchy._lock:
             status = lib.ps_sim_create(hierarchy_cdata, definition, out)
         check_create(status)
-        del pinned_buffer
+        del pinned_buffer, keyframe_buffer
 
         # The destructor holds the native hierarchy, so it is freed only after this
         # simulation, whatever order the garbage collector or the caller picks.

@@ -92,11 +92,14 @@ pub enum Effect {
     Friction,
     /// Barrier keeping membrane stretches below [`SimulationDef::strain_limit`].
     StrainLimit,
+    /// Aerodynamic drag and lift of [`SimulationDef::wind_velocity`] on every face (dynamic
+    /// simulations only).
+    Wind,
 }
 
 impl Effect {
     /// Every effect, in bit order.
-    pub const ALL: [Effect; 7] = [
+    pub const ALL: [Effect; 8] = [
         Effect::Membrane,
         Effect::Bending,
         Effect::Gravity,
@@ -104,6 +107,7 @@ impl Effect {
         Effect::Contact,
         Effect::Friction,
         Effect::StrainLimit,
+        Effect::Wind,
     ];
 
     /// The C `ps_effect` bit of this effect.
@@ -116,6 +120,7 @@ impl Effect {
             Effect::Contact => sys::PS_EFFECT_CONTACT,
             Effect::Friction => sys::PS_EFFECT_FRICTION,
             Effect::StrainLimit => sys::PS_EFFECT_STRAIN_LIMIT,
+            Effect::Wind => sys::PS_EFFECT_WIND,
         }
     }
 }
@@ -311,6 +316,19 @@ pub struct SimulationDef {
     /// [`Simulation::set_handle_motion`](crate::Simulation::set_handle_motion)). Default:
     /// none, and then the simulation has no handle.
     pub pinned_vertices: Vec<i32>,
+    /// The steady wind, m/s, `[wx, wy, wz]`; default zero (still air: drag only). Used while
+    /// [`Effect::Wind`] is enabled: per face, drag ½ρC_dA|u·n|(u·n)n and lift across the
+    /// relative wind u (scenes/README.md, "Wind").
+    pub wind_velocity: [f64; 3],
+    /// Gusts: `[time s, wx, wy, wz m/s]` rows at increasing times, the wind linear between them
+    /// and held outside them; they replace `wind_velocity`. Default: none.
+    pub wind_keyframes: Vec<[f64; 4]>,
+    /// Air density ρ, kg/m³, in (0, 1e4]; default 1.2 (`wind.density`).
+    pub wind_density: f64,
+    /// Drag coefficient C_d of each face, in [0, 100]; default 1.2 (`wind.drag`).
+    pub wind_drag: f64,
+    /// Lift coefficient C_L of each face, in [0, 100]; default 0 = no lift (`wind.lift`).
+    pub wind_lift: f64,
 }
 
 /// The C defaults, filled by `ps_sim_def_init()`.
@@ -350,6 +368,11 @@ impl Default for SimulationDef {
             gravity: raw.gravity,
             pressure: raw.pressure,
             pinned_vertices: Vec::new(),
+            wind_velocity: raw.wind_velocity,
+            wind_keyframes: Vec::new(),
+            wind_density: raw.wind_density,
+            wind_drag: raw.wind_drag,
+            wind_lift: raw.wind_lift,
         }
     }
 }
@@ -360,7 +383,8 @@ impl SimulationDef {
         SimulationDef::default()
     }
 
-    /// The C def borrowing `self.pinned_vertices`: valid while `self` is.
+    /// The C def borrowing `self.pinned_vertices` and `self.wind_keyframes`: valid while `self`
+    /// is.
     pub(crate) fn to_raw(&self) -> sys::ps_sim_def {
         let mut raw = raw_sim_def();
         raw.simulation_time_step = self.time_step;
@@ -388,6 +412,14 @@ impl SimulationDef {
         if !self.pinned_vertices.is_empty() {
             raw.pinned_vertices = self.pinned_vertices.as_ptr();
             raw.num_pinned_vertices = self.pinned_vertices.len();
+        }
+        raw.wind_velocity = self.wind_velocity;
+        raw.wind_density = self.wind_density;
+        raw.wind_drag = self.wind_drag;
+        raw.wind_lift = self.wind_lift;
+        if !self.wind_keyframes.is_empty() {
+            raw.wind_keyframes = self.wind_keyframes.as_ptr().cast::<f64>();
+            raw.num_wind_keyframes = self.wind_keyframes.len();
         }
         raw
     }
@@ -607,6 +639,9 @@ mod tests {
         assert_eq!(def.gravity, [0.0, -9.81, 0.0]);
         assert_eq!(def.pressure, 0.0);
         assert!(def.pinned_vertices.is_empty());
+        assert_eq!(def.wind_velocity, [0.0; 3]);
+        assert!(def.wind_keyframes.is_empty());
+        assert_eq!((def.wind_density, def.wind_drag, def.wind_lift), (1.2, 1.2, 0.0));
     }
 
     #[test]
@@ -619,9 +654,18 @@ mod tests {
             effects: Effect::Membrane.into(),
             gravity: [1.0, 2.0, 3.0],
             pinned_vertices: vec![3, 5],
+            wind_velocity: [4.0, 5.0, 6.0],
+            wind_keyframes: vec![[0.0, 1.0, 2.0, 3.0], [1.0, 0.0, 0.0, 0.0]],
+            wind_lift: 0.5,
             ..SimulationDef::default()
         };
         let raw = def.to_raw();
+        assert_eq!(raw.wind_velocity, [4.0, 5.0, 6.0]);
+        assert_eq!(raw.wind_lift, 0.5);
+        assert_eq!(raw.num_wind_keyframes, 2);
+        // SAFETY: to_raw() points at def.wind_keyframes' 2 rows of 4 doubles, alive here.
+        let rows = unsafe { std::slice::from_raw_parts(raw.wind_keyframes, 8) };
+        assert_eq!(rows[4], 1.0);
         assert_eq!(raw.simulation_time_step, 0.02);
         assert_eq!(raw.mode, sys::PS_MODE_QUASISTATIC);
         assert_eq!(raw.prediction, sys::PS_PREDICTION_PER_FRAME);
@@ -639,8 +683,9 @@ mod tests {
         effects.set(Effect::Gravity, false);
         effects.set(Effect::Pressure, true);
         assert_eq!(effects.iter().collect::<Vec<_>>(), [Effect::Membrane, Effect::Pressure]);
-        assert_eq!(Effects::all().bits(), 0b111_1111);
-        assert_eq!(format!("{:?}", Effects::from_bits_retain(0x81)), "{Membrane, 0x80}");
+        assert_eq!(Effects::all().bits(), 0b1111_1111);
+        assert_eq!(format!("{:?}", Effects::from_bits_retain(0x81)), "{Membrane, Wind}");
+        assert_eq!(format!("{:?}", Effects::from_bits_retain(0x101)), "{Membrane, 0x100}");
         assert!(Effects::empty().is_empty());
     }
 }
