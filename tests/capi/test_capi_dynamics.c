@@ -11,27 +11,7 @@
 
 #include "progsim.h"
 
-static int failures = 0;
-
-#define CHECK(cond)                                                            \
-  do {                                                                         \
-    if (!(cond)) {                                                             \
-      fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
-      ++failures;                                                              \
-    }                                                                          \
-  } while (0)
-
-/* status == expected and the message contains `needle`. */
-#define CHECK_ERROR(status, expected, message, needle)                                        \
-  do {                                                                                        \
-    const int32_t s_ = (status);                                                              \
-    const char* m_ = (message);                                                               \
-    if (s_ != (expected) || !strstr(m_, (needle))) {                                          \
-      fprintf(stderr, "%s:%d: expected %s with \"%s\", got %s: \"%s\"\n", __FILE__, __LINE__, \
-              ps_status_name(expected), (needle), ps_status_name(s_), m_);                    \
-      ++failures;                                                                             \
-    }                                                                                         \
-  } while (0)
+#include "check.h"
 
 enum { kCells = 8, kSide = kCells + 1, kVertices = kSide * kSide, kFaces = 2 * kCells * kCells };
 static const double kStep = 0.01, kGravity = 9.81, kSpacing = 0.1;
