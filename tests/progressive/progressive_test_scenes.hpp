@@ -74,4 +74,19 @@ inline Scene buckling_plate(int n, double bump, int steps) {
   return scene;
 }
 
+/// A 0.5 m cotton-like square cloth (21 × 21 vertices) in the x–y plane under gravity −z,
+/// animated with h (10 ms by default) on three levels (30, 120, 441 vertices); nothing holds it.
+inline Scene falling_cloth(int steps, double time_step = 0.01) {
+  ShellMaterial cloth;
+  cloth.youngs_modulus = 1e5;
+  cloth.thickness = 5e-4;
+  cloth.density = 300.0;
+  Scene scene = shell_scene(make_grid(0.5, 0.5, 20, 20), cloth);
+  scene.mode = StepMode::dynamic;
+  scene.time_step = time_step;
+  scene.duration = steps * scene.time_step;
+  scene.progressive.level_vertices = {30, 120};
+  return scene;
+}
+
 }  // namespace progsim::test_support

@@ -19,21 +19,6 @@ using namespace progsim::contact_scenes;
 
 namespace {
 
-/// A 0.5 m cotton-like square cloth (21 × 21 vertices) in the x–y plane under gravity −z,
-/// animated with h = 10 ms on three levels (30, 120, 441 vertices); nothing holds it.
-Scene falling_cloth(int steps) {
-  ShellMaterial cloth;
-  cloth.youngs_modulus = 1e5;
-  cloth.thickness = 5e-4;
-  cloth.density = 300.0;
-  Scene scene = shell_scene(make_grid(0.5, 0.5, 20, 20), cloth);
-  scene.mode = StepMode::dynamic;
-  scene.time_step = 0.01;
-  scene.duration = steps * scene.time_step;
-  scene.progressive.level_vertices = {30, 120};
-  return scene;
-}
-
 /// The same cloth held at two corners: it swings down and folds.
 Scene swinging_cloth(int steps) {
   Scene scene = falling_cloth(steps);

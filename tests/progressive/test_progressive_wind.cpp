@@ -15,19 +15,11 @@ using namespace progsim::test_support;
 TEST(WindProgressive, EveryLevelIsBlownDownwindAlike) {
   const int steps = 10;
   const double w = 10.0;
-  ShellMaterial cloth;
-  cloth.youngs_modulus = 1e5;
-  cloth.thickness = 5e-4;
-  cloth.density = 300.0;
-  Scene scene = shell_scene(make_grid(0.5, 0.5, 20, 20), cloth);
-  scene.mode = StepMode::dynamic;
-  scene.time_step = 0.02;
-  scene.duration = steps * scene.time_step;
+  Scene scene = falling_cloth(steps, 0.02);
   scene.effects.disable(Effect::gravity);
   scene.effects.enable(Effect::wind);
   scene.wind.velocity = Vec3(0.0, 0.0, w);
   scene.solver.tolerance = 1e-6;
-  scene.progressive.level_vertices = {30, 120};
   // The Galerkin Hessian: with the level's own Hessian standing in for the proxy's, the previews
   // of this flexing cloth converged linearly, most steps hitting 100 iterations.
   scene.progressive.hessian = ProxyHessian::galerkin;
