@@ -170,7 +170,7 @@ int run_progressive_dynamics(Scene scene, const RunCommand& opt) {
   std::ofstream(dir / "summary.json") << summary.dump(2) << "\n";  // the last file written
   std::printf(
       "%s: progressive dynamics, %d steps of %.3g s previewed on level 0, %d levels, %.3g s "
-      "(CoM dev.: distance of the level's centre of mass from the preview's at the same time)\n"
+      "(CoM dev.: how far the level's centre of mass moved away from the preview's since frame 0)\n"
       "%s%s",
       s.name.c_str(), steps, s.time_step, pd.finest() + 1, total.seconds(),
       dynamic_level_table(rows).c_str(), outcome_line(outcome).c_str());
