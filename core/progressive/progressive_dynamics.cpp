@@ -141,9 +141,7 @@ void ProgressiveDynamics::update_scene(Scene scene) {
     fail(Status::invalid_argument,
          "update_scene: the time step cannot change within an animation (restart with a new "
          "ProgressiveDynamics)");
-  const ProgressiveSettings &a = scene.progressive, &b = scene_.progressive;
-  if (a.coarse_levels != b.coarse_levels || a.coarsening_ratio != b.coarsening_ratio ||
-      a.level_vertices != b.level_vertices)
+  if (!same_levels(scene.progressive, scene_.progressive))
     fail(Status::invalid_argument,
          "update_scene: the progressive levels define the hierarchy and cannot change");
   preview_->update_scene(scene);

@@ -25,11 +25,6 @@ std::vector<int> coarse_counts(const ProgressiveSettings& p, int finest_vertices
   return geometric_level_counts(finest_vertices, p.coarsening_ratio, p.coarse_levels);
 }
 
-bool same_levels(const ProgressiveSettings& a, const ProgressiveSettings& b) {
-  return a.coarse_levels == b.coarse_levels && a.coarsening_ratio == b.coarsening_ratio &&
-         a.level_vertices == b.level_vertices;
-}
-
 /// build_scene_hierarchy() of a scene that passed check_progressive_scene().
 MeshHierarchy checked_scene_hierarchy(const Scene& scene, HierarchyProgress progress, void* user) {
   const ShellModel model = build_shell_model(scene);
@@ -41,6 +36,11 @@ MeshHierarchy checked_scene_hierarchy(const Scene& scene, HierarchyProgress prog
 }
 
 }  // namespace
+
+bool same_levels(const ProgressiveSettings& a, const ProgressiveSettings& b) {
+  return a.coarse_levels == b.coarse_levels && a.coarsening_ratio == b.coarsening_ratio &&
+         a.level_vertices == b.level_vertices;
+}
 
 void check_progressive_scene(const Scene& scene) {
   validate_scene(scene);

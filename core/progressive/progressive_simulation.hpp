@@ -166,6 +166,10 @@ class ProgressiveSimulation {
 /// input's faces), unless the scene opts into a crossing start (contact.crossing_start).
 void check_progressive_scene(const Scene& scene);
 
+/// Whether two settings ask for the same levels (and so the same hierarchy): a scene update
+/// must keep them.
+bool same_levels(const ProgressiveSettings& a, const ProgressiveSettings& b);
+
 /// The scene's hierarchy as its `progressive` settings ask: the merged bodies decimated to the
 /// requested coarse level sizes with the handles as vertex groups and, with contact on, their
 /// contact offsets kept between the faces of every level (a single level when the settings ask
