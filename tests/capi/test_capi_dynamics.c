@@ -219,7 +219,8 @@ static void test_misuse(const ps_hierarchy* h) {
   ps_level_stats level_stats;
   CHECK(ps_sim_num_frames(sim, 0, &frames) == PS_OK && frames == 1);
   CHECK_ERROR(ps_sim_get_frame_positions(sim, 0, 1, NULL, 0, &count), PS_ERROR_OUT_OF_RANGE,
-              ps_sim_last_error(sim), "frame 1");
+              ps_sim_last_error(sim),
+              "frame 1 of level 0 has not been computed (level 0 has 1 frame)");
   CHECK_ERROR(ps_sim_get_frame_positions(sim, 1, 0, NULL, 0, &count), PS_ERROR_OUT_OF_RANGE,
               ps_sim_last_error(sim), "level 1 has not been computed");
   CHECK_ERROR(ps_sim_get_frame_velocities(sim, 3, 0, NULL, 0, &count), PS_ERROR_OUT_OF_RANGE,
