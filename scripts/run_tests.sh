@@ -2,18 +2,50 @@
 # Runs every test: installs what is needed, builds, and runs the C++ and C tests (normal build),
 # an installed-copy find_package check, the Python (cffi) and Rust (bindgen) binding tests,
 # then the C++/C tests again under AddressSanitizer + UBSan (clang) and 60 s of libFuzzer
-# over the scene parser and mesh loaders. CI runs exactly this.
+# over the scene parser and mesh loaders. CI runs exactly this, with CI=true: the main job
+# (scripts/run_default.sh) then runs first on the same clone.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install_deps.sh
 scripts/fetch_test_meshes.sh
 export OMP_WAIT_POLICY=passive  # tests share the cores; idle OpenMP threads must sleep
 
+# The fewest tests the release build may run: a build that lost a test directory (or every
+# test, as a reused build/release configured by the main job once did) fails here loudly.
+min_release_tests=300
+
+# Runs ctest on build/release with the given arguments (its output also in
+# build/release/ctest.log), then fails unless it ran every test it lists for that build and at
+# least $min_release_tests of them. A skipped test (GTEST_SKIP) counts as run; one with the
+# DISABLED property does not, so it fails the check too.
+release_ctest() {
+  local listed ran
+  ctest --test-dir build/release --output-on-failure --no-tests=error "$@" |
+    tee build/release/ctest.log
+  listed=$(ctest --test-dir build/release -N | sed -n 's/^Total Tests: \([0-9][0-9]*\)$/\1/p')
+  ran=$(sed -n 's/.* tests failed out of \([0-9][0-9]*\)$/\1/p' build/release/ctest.log)
+  if [ -z "$listed" ] || [ -z "$ran" ] || [ "$ran" -ne "$listed" ] ||
+    [ "$ran" -lt "$min_release_tests" ]; then
+    echo "run_tests: ctest ran ${ran:-no} tests of the ${listed:-no} build/release lists;" \
+      "expected all of them and at least $min_release_tests" >&2
+    return 1
+  fi
+  echo "run_tests: ctest ran all $ran tests build/release lists"
+}
+
+if [ "${CI:-}" = true ]; then
+  echo "== main job (scripts/run_default.sh), then the tests on the same clone =="
+  # It configures build/release without tests; the release build below must still run them
+  # all. The library and the CLI it builds are reused there (nothing of them is rebuilt), so
+  # this costs the scene's run: 31 s on 2 cores.
+  scripts/run_default.sh
+fi
+
 echo "== release build: C++ and C tests =="
 # Tests and benchmarks on explicitly: the main job (run_default.sh) configures build/release
 # without them, and a reused cache would otherwise build and run no test at all.
 scripts/build.sh release -DPROGSIM_BUILD_TESTS=ON -DPROGSIM_BUILD_BENCH=ON
-ctest --test-dir build/release --output-on-failure --no-tests=error -j "$(nproc)"
+release_ctest -j "$(nproc)"
 
 echo "== installed copy: find_package(progsim) =="
 rm -rf build/install build/consumer

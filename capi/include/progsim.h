@@ -431,8 +431,12 @@ PS_API int32_t ps_param_count(void);
 PS_API int32_t ps_param_info_get(int32_t index, ps_param_info* out);
 
 /** Switches between dynamic and quasistatic stepping (a ps_mode) between steps; velocities
- *  are zeroed when switching to quasistatic. Errors: PS_ERROR_INVALID_ARGUMENT;
- *  PS_ERROR_INVALID_SCENE for quasistatic with a body nothing holds (as ps_sim_create). */
+ *  are zeroed when switching to quasistatic. The simulation keeps its ps_sim_kind: a direct
+ *  simulation switches either way, a PSQ simulation refuses PS_MODE_DYNAMIC
+ *  (PS_ERROR_UNSUPPORTED) and a progressive animation PS_MODE_QUASISTATIC
+ *  (PS_ERROR_INVALID_SCENE); create a new simulation in the other mode instead. Errors:
+ *  PS_ERROR_INVALID_ARGUMENT; PS_ERROR_INVALID_SCENE for quasistatic with a body nothing holds
+ *  (as ps_sim_create); those above. On error nothing changed. */
 PS_API int32_t ps_sim_set_mode(ps_sim* sim, int32_t mode);
 
 /** The stepping mode (a ps_mode) into *out. */

@@ -56,6 +56,7 @@ nlohmann::json dynamic_step_json(int level, const DynamicStepRecord& s) {
                          {"consistency", s.consistency}};
   if (s.contact) line["contact"] = contact_json(*s.contact);
   if (s.max_stretch) line["max_stretch"] = *s.max_stretch;
+  if (s.wind) line["wind"] = wind_json(*s.wind);
   return line;
 }
 

@@ -37,7 +37,8 @@ nlohmann::json to_json(const DynamicLevelSummary& row);
 
 /// One steps.jsonl line: the step tagged with its level; its time, Newton iterations,
 /// convergence, wall time, motion (kinetic energy, centre of mass, continuity), centre-of-mass
-/// deviation and consistency, and with contact or a strain limit their counters.
+/// deviation and consistency, and with contact, a strain limit or wind their records (as
+/// to_json_line() writes them for a direct step).
 nlohmann::json dynamic_step_json(int level, const DynamicStepRecord& step);
 
 /// The rows as a text table: vertices, steps, time, Newton iterations, converged steps and the

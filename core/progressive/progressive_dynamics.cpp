@@ -72,7 +72,7 @@ std::unique_ptr<LevelSimulation> ProgressiveDynamics::make_level(int level) cons
 
 void ProgressiveDynamics::restart() {
   auto preview = make_level(0);
-  Trajectory frames(preview->model().rest.num_vertices());
+  Trajectory frames(0, preview->model().rest.num_vertices());
   frames.append(preview->dofs(), preview->velocities());
   DynamicLevelRecord record = start_record(*preview);
   preview_ = std::move(preview);
@@ -126,6 +126,7 @@ void add_dynamic_step(DynamicLevelRecord& record, const StepRecord& step, double
   r.consistency = consistency;
   r.contact = step.contact;
   r.max_stretch = step.max_stretch;
+  r.wind = step.wind;
   record.seconds += step.seconds;
   record.newton_iterations += r.newton_iterations;
   record.converged_steps += r.converged;
@@ -155,7 +156,7 @@ void ProgressiveDynamics::set_preview_velocities(const Vector& velocities) {
          "set_preview_velocities: the preview has taken steps; restart() to set its initial "
          "velocities");
   preview_->set_velocities(velocities);
-  Trajectory frames(trajectories_[0].num_vertices());
+  Trajectory frames(0, trajectories_[0].num_vertices());
   frames.append(preview_->dofs(), preview_->velocities());
   trajectories_[0] = std::move(frames);
 }
@@ -175,7 +176,7 @@ void ProgressiveDynamics::refine(const RefineProgress& progress) {
   Vector x_now, v_now, x_next, v_next;
   from.read(0, x_now, v_now);
   sim->set_velocities(prolong_velocity(p, v_now));  // v_{l+1}^0 = U v_l^0
-  Trajectory frames(sim->model().rest.num_vertices());
+  Trajectory frames(fine, sim->model().rest.num_vertices());
   frames.append(sim->dofs(), sim->velocities());
   const ConsistencyProjection projection(p.intrinsic(), sim->model().vertex_masses,
                                          masses_[coarse]);

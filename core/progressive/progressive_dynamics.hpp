@@ -34,6 +34,7 @@ struct DynamicStepRecord {
   double consistency = 0.0;
   std::optional<ContactStats> contact;  ///< with contact: this step's counters
   std::optional<double> max_stretch;    ///< with a strain limit: the largest stretch after it
+  std::optional<WindRecord> wind;       ///< with wind: the wind and its force after it
 };
 
 /// One level of a progressive animation: its size, work and per-step records.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <string>
 
 #include "common/error.hpp"
 #include "common/timer.hpp"
@@ -16,6 +17,17 @@ namespace {
 Scene validated(Scene scene) {
   check_progressive_scene(scene);
   return scene;
+}
+
+/// Throws Error(unsupported), starting with `what`, for a dynamic scene on several levels: PSQ
+/// is quasistatic (a single level runs either mode as a direct simulation).
+void check_quasistatic_levels(const Scene& scene, int num_levels, const std::string& what) {
+  if (num_levels > 1 && scene.mode == StepMode::dynamic)
+    fail(Status::unsupported,
+         what +
+             ": PSQ is quasistatic; a dynamic scene on several levels is animated from its "
+             "initial state by Progressive Dynamics (ProgressiveDynamics, or a simulation "
+             "created in dynamic mode)");
 }
 
 /// Coarse level sizes the settings ask for (coarsest first); empty for a direct simulation.
@@ -61,10 +73,7 @@ ProgressiveSimulation::ProgressiveSimulation(Scene scene,
   if (!hierarchy_)
     hierarchy_ =
         std::make_shared<const MeshHierarchy>(checked_scene_hierarchy(scene_, progress, user));
-  if (hierarchy_->num_levels() > 1 && scene_.mode == StepMode::dynamic)
-    fail(Status::unsupported, scene_.name +
-                                  ": PSQ is quasistatic; a dynamic scene on several levels is "
-                                  "animated by Progressive Dynamics (ProgressiveDynamics)");
+  check_quasistatic_levels(scene_, hierarchy_->num_levels(), scene_.name);
   if (hierarchy_->num_levels() > 1) {
     std::vector<int> shell_vertices;
     for (const HierarchyLevel& l : hierarchy_->levels)
@@ -289,6 +298,7 @@ std::optional<StateDistance> ProgressiveSimulation::error_against_finest(int lev
 
 void ProgressiveSimulation::update_scene(Scene scene) {
   validate_scene(scene);
+  check_quasistatic_levels(scene, hierarchy_->num_levels(), "update_scene");
   if (!same_levels(scene.progressive, scene_.progressive))
     fail(Status::invalid_argument,
          "update_scene: the progressive levels define the hierarchy and cannot change");

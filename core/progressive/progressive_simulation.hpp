@@ -115,7 +115,10 @@ class ProgressiveSimulation {
   std::optional<StateDistance> error_against_finest(int level) const;
   /// Replaces the scene between steps (materials, loads, handle motions, effects, solver
   /// settings), keeping the level, state and time. The meshes and the handles' vertex sets
-  /// must stay (they define the hierarchy). On Error nothing changed.
+  /// must stay (they define the hierarchy). A switch to dynamic stepping is refused on several
+  /// levels (Error(unsupported): Progressive Dynamics animates them from the initial state), as
+  /// the constructor refuses a dynamic scene there; on a single level it is a direct
+  /// simulation's switch. On Error nothing changed.
   void update_scene(Scene scene);
   /// The operators that take level `level` (< finest) to the finest mesh, applied in turn: the
   /// proxy energy's prolongation (scene.progressive.prolongation). Built once.

@@ -6,15 +6,26 @@
 
 namespace progsim {
 
-Trajectory::Trajectory(int num_vertices) : file_(std::tmpfile()), vertices_(num_vertices) {
-  if (!file_) fail(Status::io_error, "trajectory: cannot create a temporary file");
+namespace {
+
+/// "level L's trajectory: ", the start of the trajectory's error messages.
+std::string about(int level) {
+  return "level " + std::to_string(level) + "'s trajectory: ";
+}
+
+}  // namespace
+
+Trajectory::Trajectory(int level, int num_vertices)
+    : file_(std::tmpfile()), level_(level), vertices_(num_vertices) {
+  if (!file_) fail(Status::io_error, about(level_) + "cannot create a temporary file");
 }
 
 void Trajectory::append(const Vector& positions, const Vector& velocities) {
   const Eigen::Index n = 3 * Eigen::Index{vertices_};
   if (positions.size() != n || velocities.size() != n)
-    fail(Status::invalid_argument, "trajectory: a frame of " + std::to_string(positions.size()) +
-                                       " positions and " + std::to_string(velocities.size()) +
+    fail(Status::invalid_argument, about(level_) + "a frame of " +
+                                       std::to_string(positions.size()) + " positions and " +
+                                       std::to_string(velocities.size()) +
                                        " velocities, the level has " + std::to_string(n) + " DOFs");
   const long frame_bytes = 2L * n * static_cast<long>(sizeof(double));
   std::FILE* f = file_.get();
@@ -22,14 +33,16 @@ void Trajectory::append(const Vector& positions, const Vector& velocities) {
                        std::fwrite(positions.data(), sizeof(double), n, f) == std::size_t(n) &&
                        std::fwrite(velocities.data(), sizeof(double), n, f) == std::size_t(n);
   if (!written)
-    fail(Status::io_error, "trajectory: writing frame " + std::to_string(frames_) + " failed");
+    fail(Status::io_error, about(level_) + "writing frame " + std::to_string(frames_) + " failed");
   ++frames_;
 }
 
 void Trajectory::read(int frame, Vector& positions, Vector& velocities) const {
   if (frame < 0 || frame >= frames_)
-    fail(Status::out_of_range, "frame " + std::to_string(frame) + " has not been computed (" +
-                                   std::to_string(frames_) + " frames)");
+    fail(Status::out_of_range, "frame " + std::to_string(frame) + " of level " +
+                                   std::to_string(level_) + " has not been computed (level " +
+                                   std::to_string(level_) + " has " + std::to_string(frames_) +
+                                   (frames_ == 1 ? " frame)" : " frames)"));
   const Eigen::Index n = 3 * Eigen::Index{vertices_};
   positions.resize(n);
   velocities.resize(n);
@@ -39,7 +52,7 @@ void Trajectory::read(int frame, Vector& positions, Vector& velocities) const {
                     std::fread(positions.data(), sizeof(double), n, f) == std::size_t(n) &&
                     std::fread(velocities.data(), sizeof(double), n, f) == std::size_t(n);
   if (!read)
-    fail(Status::io_error, "trajectory: reading frame " + std::to_string(frame) + " failed");
+    fail(Status::io_error, about(level_) + "reading frame " + std::to_string(frame) + " failed");
 }
 
 }  // namespace progsim

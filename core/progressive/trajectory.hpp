@@ -13,9 +13,9 @@ namespace progsim {
 /// Memory is O(1) in the number of frames.
 class Trajectory {
  public:
-  /// An empty trajectory of a level with `num_vertices` vertices. Throws Error(io_error) if no
-  /// temporary file can be made.
-  explicit Trajectory(int num_vertices);
+  /// An empty trajectory of level `level` (named in error messages), which has `num_vertices`
+  /// vertices. Throws Error(io_error) if no temporary file can be made.
+  Trajectory(int level, int num_vertices);
   Trajectory(Trajectory&&) noexcept = default;
   Trajectory& operator=(Trajectory&&) noexcept = default;
 
@@ -24,7 +24,8 @@ class Trajectory {
   /// (the frame is then not counted).
   void append(const Vector& positions, const Vector& velocities);
   /// Reads frame `frame` into positions and velocities (resized to 3|V|). Throws
-  /// Error(out_of_range) for a frame not written, Error(io_error) on a failed read.
+  /// Error(out_of_range) for a frame not written (naming the level, the frame and the level's
+  /// number of frames), Error(io_error) on a failed read.
   void read(int frame, Vector& positions, Vector& velocities) const;
 
   int num_frames() const { return frames_; }
@@ -35,6 +36,7 @@ class Trajectory {
     void operator()(std::FILE* file) const { std::fclose(file); }
   };
   std::unique_ptr<std::FILE, Close> file_;
+  int level_ = 0;
   int vertices_ = 0;
   int frames_ = 0;
 };

@@ -24,4 +24,9 @@ nlohmann::json motion_json(const MotionRecord& m) {
           {"continuity", m.continuity}};
 }
 
+nlohmann::json wind_json(const WindRecord& w) {
+  return {{"velocity", {w.velocity.x(), w.velocity.y(), w.velocity.z()}},
+          {"force", {w.force.x(), w.force.y(), w.force.z()}}};
+}
+
 }  // namespace progsim

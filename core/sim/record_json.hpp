@@ -14,4 +14,7 @@ nlohmann::json contact_json(const ContactStats& contact);
 /// continuity.
 nlohmann::json motion_json(const MotionRecord& motion);
 
+/// A step's wind: its velocity [x, y, z] (m/s) and its force on the shell [x, y, z] (N).
+nlohmann::json wind_json(const WindRecord& wind);
+
 }  // namespace progsim

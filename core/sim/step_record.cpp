@@ -37,10 +37,7 @@ std::string to_json_line(const StepRecord& r) {
   if (r.contact) line["contact"] = contact_json(*r.contact);
   if (r.friction_contacts) line["friction_contacts"] = *r.friction_contacts;
   if (r.max_stretch) line["max_stretch"] = *r.max_stretch;
-  if (r.wind)
-    line["wind"] = {
-        {"velocity", {r.wind->velocity.x(), r.wind->velocity.y(), r.wind->velocity.z()}},
-        {"force", {r.wind->force.x(), r.wind->force.y(), r.wind->force.z()}}};
+  if (r.wind) line["wind"] = wind_json(*r.wind);
   if (r.motion) line["motion"] = motion_json(*r.motion);
   return line.dump();
 }

@@ -219,7 +219,8 @@ static void test_misuse(const ps_hierarchy* h) {
   ps_level_stats level_stats;
   CHECK(ps_sim_num_frames(sim, 0, &frames) == PS_OK && frames == 1);
   CHECK_ERROR(ps_sim_get_frame_positions(sim, 0, 1, NULL, 0, &count), PS_ERROR_OUT_OF_RANGE,
-              ps_sim_last_error(sim), "frame 1");
+              ps_sim_last_error(sim),
+              "frame 1 of level 0 has not been computed (level 0 has 1 frame)");
   CHECK_ERROR(ps_sim_get_frame_positions(sim, 1, 0, NULL, 0, &count), PS_ERROR_OUT_OF_RANGE,
               ps_sim_last_error(sim), "level 1 has not been computed");
   CHECK_ERROR(ps_sim_get_frame_velocities(sim, 3, 0, NULL, 0, &count), PS_ERROR_OUT_OF_RANGE,
@@ -254,8 +255,14 @@ static void test_misuse(const ps_hierarchy* h) {
   def.effects = PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING;
   CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
   if (!sim) return;
-  int32_t kind = -1;
+  int32_t kind = -1, mode = -1;
   CHECK(ps_sim_get_kind(sim, &kind) == PS_OK && kind == PS_SIM_PSQ);
+  /* PSQ does not step a dynamic scene: switching is refused and changes nothing. */
+  CHECK_ERROR(ps_sim_set_mode(sim, PS_MODE_DYNAMIC), PS_ERROR_UNSUPPORTED, ps_sim_last_error(sim),
+              "PSQ is quasistatic; a dynamic scene on several levels is animated");
+  CHECK(ps_sim_get_mode(sim, &mode) == PS_OK && mode == PS_MODE_QUASISTATIC);
+  CHECK(ps_sim_get_kind(sim, &kind) == PS_OK && kind == PS_SIM_PSQ);
+  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
   CHECK_ERROR(ps_sim_num_frames(sim, 0, &frames), PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),
               "(PSQ)");
   CHECK_ERROR(ps_sim_restart(sim), PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),

@@ -143,7 +143,7 @@ TEST(ProgressiveDynamics, MisuseIsRefusedAndChangesNothing) {
                {"level 1", "not been computed"});
   pd.step_preview();
   expect_error([&] { pd.read_frame(0, 2, x, v); }, Status::out_of_range,
-               {"frame 2", "not been computed"});
+               {"frame 2 of level 0 has not been computed", "level 0 has 2 frames"});
   Scene other = scene;
   other.time_step = 0.02;
   expect_error([&] { pd.update_scene(other); }, Status::invalid_argument, {"time step"});

@@ -7,6 +7,7 @@
 #include "common/error.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "progressive/progressive_test_scenes.hpp"
+#include "support/expect_error.hpp"
 
 using namespace progsim;
 using namespace progsim::test_support;
@@ -205,6 +206,34 @@ TEST(ProgressiveSimulation, ParametersChangeBetweenPreviewSteps) {
   other_handles.handles[0].vertices.pop_back();
   EXPECT_THROW(psq.update_scene(other_handles), Error);
   psq.settle();  // still usable after the refused edits
+}
+
+TEST(ProgressiveSimulation, SwitchingToDynamicIsRefusedOnSeveralLevelsAndChangesNothing) {
+  Scene scene = curved_cantilever(8, 20);
+  scene.time_step = 0.01;
+  scene.progressive.level_vertices = {40};
+  Scene dynamic = scene;
+  dynamic.mode = StepMode::dynamic;
+  ProgressiveSimulation psq(scene);
+  psq.step();
+  const Positions before = psq.positions(0);
+  expect_error([&] { psq.update_scene(dynamic); }, Status::unsupported,
+               {"update_scene: PSQ is quasistatic", "Progressive Dynamics"});
+  EXPECT_EQ(psq.scene().mode, StepMode::quasistatic);
+  EXPECT_EQ(psq.current().scene().mode, StepMode::quasistatic);
+  EXPECT_EQ(psq.current().steps_taken(), 1);
+  EXPECT_EQ(psq.positions(0), before);
+  psq.step();  // still a PSQ preview
+  EXPECT_EQ(psq.current().velocities().norm(), 0.0);
+  // On a single level it is a direct simulation, which steps either mode.
+  scene.progressive.level_vertices.clear();
+  dynamic.progressive.level_vertices.clear();
+  ProgressiveSimulation direct(scene);
+  direct.step();
+  direct.update_scene(dynamic);
+  EXPECT_EQ(direct.current().scene().mode, StepMode::dynamic);
+  direct.step();
+  EXPECT_GT(direct.current().velocities().norm(), 0.0);
 }
 
 TEST(ProgressiveSimulation, RefusesWhatItCannotDo) {

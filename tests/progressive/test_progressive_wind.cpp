@@ -1,11 +1,12 @@
 // Wind in Progressive Dynamics: every level, the preview through the proxy energy included,
 // is blown downwind as implicit Euler of the drag equation predicts for the whole cloth (the
-// wind acts on each level's own faces).
+// wind acts on each level's own faces); each level's steps report the wind as direct steps do.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "mesh/mesh_generators.hpp"
+#include "progressive/dynamics_report.hpp"
 #include "progressive/progressive_dynamics.hpp"
 #include "progressive/progressive_test_scenes.hpp"
 
@@ -45,5 +46,39 @@ TEST(WindProgressive, EveryLevelIsBlownDownwindAlike) {
     // Within 2 %: a coarse level's lumped drag (a third of its own faces' areas) and its
     // prolonged masses differ from vertex to vertex, so it flexes a little as it speeds up.
     EXPECT_NEAR(moved, travelled - first, 0.02 * travelled) << "level " << level;
+  }
+}
+
+TEST(WindProgressive, EveryLevelsStepsCarryTheWindRecordOnlyWithWind) {
+  const int steps = 2;
+  Scene still = falling_cloth(steps);
+  Scene windy = still;
+  windy.effects.disable(Effect::gravity);
+  windy.effects.enable(Effect::wind);
+  windy.wind.velocity = Vec3(0.0, 0.0, 10.0);
+  for (const Scene& scene : {still, windy}) {
+    const bool wind = scene.effects.has(Effect::wind);
+    ProgressiveDynamics pd(scene);
+    for (int n = 0; n < steps; ++n) pd.step_preview();
+    pd.refine();
+    pd.refine();
+    for (int level = 0; level <= 2; ++level) {
+      const std::vector<DynamicStepRecord>& records = pd.record(level).steps;
+      ASSERT_EQ(records.size(), std::size_t(steps));
+      for (const DynamicStepRecord& s : records) {
+        SCOPED_TRACE("wind " + std::to_string(wind) + ", level " + std::to_string(level) +
+                     ", step " + std::to_string(s.step));
+        const nlohmann::json line = dynamic_step_json(level, s);  // its steps.jsonl line
+        ASSERT_EQ(s.wind.has_value(), wind);
+        ASSERT_EQ(line.contains("wind"), wind);
+        if (!wind) continue;
+        EXPECT_EQ(s.wind->velocity, scene.wind.velocity);
+        EXPECT_GT(s.wind->force.z(), 0.0);  // the drag pushes the cloth downwind
+        EXPECT_EQ(line.at("wind").at("velocity"), nlohmann::json({0.0, 0.0, 10.0}));
+        StepRecord direct;  // a direct step's line carries the same object
+        direct.wind = s.wind;
+        EXPECT_EQ(line.at("wind"), nlohmann::json::parse(to_json_line(direct)).at("wind"));
+      }
+    }
   }
 }
