@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 12
+#define PS_VERSION_MINOR 13
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -305,6 +305,10 @@ typedef struct ps_sim_def {
    *  w/(2h²)‖x − P(x_coarser)‖²_M pulling each finer level toward the prolonged coarser frame
    *  (VPD eq. 4, from PD++; w = 1 weighs it like the inertia) */
   double progressive_consistency_weight;
+  /** mean finest edge lengths, [0, 1e6]; default 0.5: a progressive animation's Galerkin proxy
+   *  Hessian is reassembled once the finest state has moved this far (net of its mean
+   *  translation) or Newton contracts slowly; 0: every Newton iteration (`progsim params`) */
+  double progressive_galerkin_refresh;
   ps_mode mode; /**< default PS_MODE_DYNAMIC */
   /** a progressive animation's prediction; default PS_PREDICTION_VELOCITY_ONLY */
   ps_prediction prediction;

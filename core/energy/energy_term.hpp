@@ -41,6 +41,11 @@ class EnergyTerm {
   /// Galerkin Hessian): the Newton solver then does not refine its steps against it.
   virtual bool hessian_is_exact() const { return true; }
 
+  /// For terms whose hessian_values() may return an earlier evaluation's matrix (the lazily
+  /// refreshed Galerkin Hessian): the next evaluation assembles at its own x. The Newton solver
+  /// asks for it when an iteration reduced the gradient too little (a chord method's refresh).
+  virtual void refresh_hessian() {}
+
   /// False for terms whose stencils change with x (contact, friction): the Problem then asks
   /// for their triplets at every Hessian evaluation instead of using a fixed pattern, and
   /// such terms report hessian_entry_count() = 0.

@@ -1,5 +1,6 @@
 #include "energy/galerkin_hessian.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "common/error.hpp"
@@ -22,8 +23,12 @@ GalerkinHessian::SparseMatrix lifted(const ProlongationMatrix& intrinsic) {
 }  // namespace
 
 GalerkinHessian::GalerkinHessian(const ProlongationMatrix& intrinsic, Problem& finest,
-                                 const Vector& at)
-    : finest_(finest), lift_(lifted(intrinsic)) {
+                                 const Vector& at, double refresh_distance)
+    : finest_(finest), lift_(lifted(intrinsic)), refresh_distance_(refresh_distance) {
+  if (!(refresh_distance >= 0.0) || !std::isfinite(refresh_distance))
+    fail(Status::invalid_argument, "Galerkin Hessian: the refresh distance " +
+                                       std::to_string(refresh_distance) +
+                                       " m must be a finite number >= 0");
   if (lift_.rows() != finest.num_dofs() || at.size() != finest.num_dofs() ||
       finest.num_free() != finest.num_dofs())
     fail(Status::invalid_argument,
@@ -52,13 +57,41 @@ void GalerkinHessian::pattern(int* rows, int* cols) const {
     }
 }
 
+bool GalerkinHessian::reusable(const Vector& fine_x, bool project_psd,
+                               const std::vector<int>& pinned) const {
+  if (refresh_distance_ <= 0.0 || last_x_.size() != fine_x.size() ||
+      project_psd != last_projected_ || pinned != last_pinned_)
+    return false;
+  const Eigen::Index n = fine_x.size() / 3;
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  for (Eigen::Index v = 0; v < n; ++v)
+    translation += fine_x.segment<3>(3 * v) - last_x_.segment<3>(3 * v);
+  translation /= static_cast<double>(n);
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (!((fine_x.segment<3>(3 * v) - last_x_.segment<3>(3 * v) - translation).squaredNorm() <=
+          refresh_distance_ * refresh_distance_))  // NaN: refresh
+      return false;
+  return true;
+}
+
 void GalerkinHessian::values(const Vector& fine_x, bool project_psd, const std::vector<int>& pinned,
                              double* out) {
+  if (reusable(fine_x, project_psd, pinned)) {
+    ++reuses_;
+    std::copy(last_values_.begin(), last_values_.end(), out);
+    return;
+  }
   const SparseMatrix h = product(fine_x, project_psd, pinned);
   if (h.nonZeros() != pattern_.nonZeros() ||
       !std::equal(h.innerIndexPtr(), h.innerIndexPtr() + h.nonZeros(), pattern_.innerIndexPtr()))
     fail(Status::internal, "Galerkin Hessian: the pattern of Uᵀ H U changed between evaluations");
   std::copy(h.valuePtr(), h.valuePtr() + h.nonZeros(), out);
+  ++assemblies_;
+  if (refresh_distance_ <= 0.0) return;
+  last_values_.assign(h.valuePtr(), h.valuePtr() + h.nonZeros());
+  last_x_ = fine_x;
+  last_projected_ = project_psd;
+  last_pinned_ = pinned;
 }
 
 }  // namespace progsim

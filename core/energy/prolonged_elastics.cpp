@@ -37,14 +37,15 @@ ProlongedElastics::ProlongedElastics(std::vector<std::shared_ptr<const ShellProl
 
 ProlongedElastics::ProlongedElastics(std::vector<std::shared_ptr<const ShellProlongation>> chain,
                                      std::vector<std::unique_ptr<EnergyTerm>> finest_terms,
-                                     const Positions& finest_rest)
+                                     const Positions& finest_rest, double refresh_distance)
     : ProlongedElastics(std::move(chain), std::move(finest_terms),
                         std::vector<std::unique_ptr<EnergyTerm>>{}) {
   ProlongationMatrix intrinsic = chain_.front()->intrinsic();  // U = U_L^{L−1} ⋯ U_{l+1}^l
   for (std::size_t k = 1; k < chain_.size(); ++k)
     intrinsic = ProlongationMatrix(chain_[k]->intrinsic() * intrinsic);
   finest_->finalize();
-  galerkin_ = std::make_unique<GalerkinHessian>(intrinsic, *finest_, as_dofs(finest_rest));
+  galerkin_ = std::make_unique<GalerkinHessian>(intrinsic, *finest_, as_dofs(finest_rest),
+                                                refresh_distance);
 }
 
 std::size_t ProlongedElastics::hessian_entry_count() const {
@@ -108,6 +109,10 @@ void ProlongedElastics::hessian_values(const Vector& x, bool project_psd, double
   // ∇²Ψ_l(x_l): the level's own shell Hessian (PSQ Algorithm 1 line 7).
   for (std::size_t k = 0; k < level_terms_.size(); ++k)
     level_terms_[k]->hessian_values(x, project_psd, values + entry_offsets_[k]);
+}
+
+void ProlongedElastics::refresh_hessian() {
+  if (galerkin_) galerkin_->refresh();
 }
 
 std::vector<TermStats> ProlongedElastics::finest_term_stats() const {

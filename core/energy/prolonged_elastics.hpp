@@ -30,10 +30,11 @@ class ProlongedElastics final : public EnergyTerm {
                     std::vector<std::unique_ptr<EnergyTerm>> finest_terms,
                     std::vector<std::unique_ptr<EnergyTerm>> level_terms);
   /// The same with the Galerkin Hessian Uᵀ∇²Ψ_L U (galerkin_hessian.hpp) in place of the
-  /// level's own; `finest_rest` (n_L × 3) fixes its pattern.
+  /// level's own; `finest_rest` (n_L × 3) fixes its pattern; it is reassembled once the finest
+  /// state has moved more than `refresh_distance` (m; 0: every evaluation), see GalerkinHessian.
   ProlongedElastics(std::vector<std::shared_ptr<const ShellProlongation>> chain,
                     std::vector<std::unique_ptr<EnergyTerm>> finest_terms,
-                    const Positions& finest_rest);
+                    const Positions& finest_rest, double refresh_distance = 0.0);
 
   const char* name() const override { return "prolonged_elastics"; }
   bool hessian_is_exact() const override { return false; }
@@ -42,6 +43,7 @@ class ProlongedElastics final : public EnergyTerm {
   std::size_t hessian_entry_count() const override;
   void hessian_pattern(int* rows, int* cols) const override;
   void hessian_values(const Vector& x, bool project_psd, double* values) const override;
+  void refresh_hessian() override;
 
   /// Holds finest vertices `vertices` at `positions` (one row each) in place of their
   /// prolonged positions: the finest level's handles (Dirichlet conditions) act exactly, and

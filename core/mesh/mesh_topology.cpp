@@ -37,4 +37,11 @@ MeshTopology build_topology(const Faces& faces, int num_vertices) {
   return topology;
 }
 
+double mean_edge_length(const MeshTopology& topology, const Positions& positions) {
+  if (topology.edges.empty()) return 0.0;
+  double sum = 0.0;
+  for (const auto& [a, b] : topology.edges) sum += (positions.row(a) - positions.row(b)).norm();
+  return sum / static_cast<double>(topology.edges.size());
+}
+
 }  // namespace progsim

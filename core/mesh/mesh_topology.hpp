@@ -26,4 +26,7 @@ struct MeshTopology {
 /// Builds edges and hinges. Precondition: the mesh passed validate_mesh().
 MeshTopology build_topology(const Faces& faces, int num_vertices);
 
+/// The mean length of `topology`'s edges at `positions` (0 without edges).
+double mean_edge_length(const MeshTopology& topology, const Positions& positions);
+
 }  // namespace progsim

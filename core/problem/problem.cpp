@@ -184,6 +184,10 @@ const Problem::SparseMatrix& Problem::add_changing_pattern_terms(const Vector& x
   return combined_;
 }
 
+void Problem::refresh_hessian() {
+  for (auto& term : terms_) term->refresh_hessian();
+}
+
 void Problem::begin_solve(const Vector& x) {
   for (StepFilter* f : filters_) f->begin_solve(x);
 }

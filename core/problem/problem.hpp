@@ -57,6 +57,9 @@ class Problem {
   /// when to redo its symbolic analysis).
   long pattern_version() const { return pattern_version_; }
 
+  /// Forwards to every term's refresh_hessian(): no term reuses an earlier Hessian next time.
+  void refresh_hessian();
+
   /// Forwards to every StepFilter term (see step_filter.hpp); without any: nothing, α = 1.
   void begin_solve(const Vector& x);
   double max_step(const Vector& x, const Vector& p);

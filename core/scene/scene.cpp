@@ -108,6 +108,8 @@ void validate_progressive(const ProgressiveSettings& p) {
     fail(Status::invalid_scene, where + ".preview_iterations must be >= 1");
   if (!(p.consistency_weight >= 0.0) || !std::isfinite(p.consistency_weight))
     fail(Status::invalid_scene, where + ".consistency_weight must be a finite number >= 0");
+  if (!(p.galerkin_refresh >= 0.0) || !std::isfinite(p.galerkin_refresh))
+    fail(Status::invalid_scene, where + ".galerkin_refresh must be a finite number >= 0");
   for (int n : p.level_vertices)
     if (n < 4)
       fail(Status::invalid_scene, where + ".levels: a level of " + std::to_string(n) +

@@ -364,13 +364,14 @@ ProgressiveSettings progressive(const Json& j) {
   expect_keys(j, where,
               {"coarse_levels", "coarsening_ratio", "levels", "preview_iterations",
                "preview_tolerance", "prolongation", "proxy_hessian", "proximal", "preview_membrane",
-               "prediction", "consistency_weight"});
+               "prediction", "consistency_weight", "galerkin_refresh"});
   ProgressiveSettings p;
   if (j.contains("coarse_levels"))
     p.coarse_levels = integer(j.at("coarse_levels"), where + ".coarse_levels");
   p.coarsening_ratio = number_or(j, "coarsening_ratio", p.coarsening_ratio, where);
   p.preview_tolerance = number_or(j, "preview_tolerance", p.preview_tolerance, where);
   p.consistency_weight = parameter(j, "progressive", "consistency_weight", where);
+  p.galerkin_refresh = parameter(j, "progressive", "galerkin_refresh", where);
   if (j.contains("preview_iterations"))
     p.preview_iterations = integer(j.at("preview_iterations"), where + ".preview_iterations");
   if (j.contains("proximal")) {
@@ -382,7 +383,9 @@ ProgressiveSettings progressive(const Json& j) {
       {{"composed", ProxyProlongation::composed}, {"direct", ProxyProlongation::direct}});
   p.hessian =
       choice<ProxyHessian>(j, "proxy_hessian", where,
-                           {{"level", ProxyHessian::level}, {"galerkin", ProxyHessian::galerkin}});
+                           {{"auto", ProxyHessian::automatic},
+                            {"level", ProxyHessian::level},
+                            {"galerkin", ProxyHessian::galerkin}});
   p.preview_membrane = choice<MembraneModel>(j, "preview_membrane", where,
                                              {{"neo_hookean", MembraneModel::neo_hookean},
                                               {"tension_field", MembraneModel::tension_field}});

@@ -45,6 +45,8 @@ const std::vector<Accessor>& accessors() {
        [](Scene& s) { return std::vector<double*>{&s.contact.friction_velocity}; }},
       {"progressive.consistency_weight",
        [](Scene& s) { return std::vector<double*>{&s.progressive.consistency_weight}; }},
+      {"progressive.galerkin_refresh",
+       [](Scene& s) { return std::vector<double*>{&s.progressive.galerkin_refresh}; }},
       {"wind.density", [](Scene& s) { return std::vector<double*>{&s.wind.density}; }},
       {"wind.drag", [](Scene& s) { return std::vector<double*>{&s.wind.drag}; }},
       {"wind.lift", [](Scene& s) { return std::vector<double*>{&s.wind.lift}; }},

@@ -173,9 +173,15 @@ void LevelSimulation::add_proxy_elastics(Problem& problem,
   ShellElastics finest = make_shell_elastics(scene_, *finest_, !dynamic, membrane);  // Ψ_L, eq. 2
   if (finest.terms.empty()) return;
   pressures = finest.pressures;
-  if (scene_.progressive.hessian == ProxyHessian::galerkin) {
+  const ProxyHessian hessian = scene_.progressive.hessian;
+  if (hessian == ProxyHessian::galerkin || (hessian == ProxyHessian::automatic && dynamic)) {
+    // Lazily only where each step is solved to the tolerance: PSQ's capped preview steps
+    // (preview_iterations) took more iterations with it and ended elsewhere.
+    const double refresh = dynamic ? scene_.progressive.galerkin_refresh *
+                                         mean_edge_length(finest_->topology, finest_->rest.vertices)
+                                   : 0.0;
     problem.add_term(std::make_unique<ProlongedElastics>(level_.to_finest, std::move(finest.terms),
-                                                         finest_->rest.vertices));
+                                                         finest_->rest.vertices, refresh));
     return;
   }
   ShellElastics own = make_shell_elastics(scene_, model_, false, membrane);  // preconditioner

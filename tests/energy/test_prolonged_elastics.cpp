@@ -134,3 +134,53 @@ TEST(ProlongedElastics, GalerkinHessianIsTheFinestHessianProjectedByU) {
   const Eigen::MatrixXd expected = lift.transpose() * fine_hessian * lift;
   EXPECT_LT(relative_error(assembled_hessian(proxy, x, true), expected, 1e-6), 1e-10);
 }
+
+TEST(ProlongedElastics, GalerkinHessianIsReassembledOnlyBeyondTheRefreshDistance) {
+  // A chord method's contract: the matrix is the last assembly's while the finest state has
+  // moved, net of its mean translation, by at most the refresh distance at every vertex; past
+  // it (a rotation, a NaN, another pinned set) it is the exact Uᵀ H U again, as a proxy that
+  // assembles every time (checked against a dense reference above) computes it.
+  const TriangleMesh mesh = dome(9);
+  HierarchyOptions options;
+  options.coarse_vertex_counts = {20, 50};
+  const MeshHierarchy h = build_hierarchy(mesh, options);
+  const std::vector<std::shared_ptr<const ShellProlongation>> chain = {
+      std::make_shared<const ShellProlongation>(next_level_prolongation(h, 0)),
+      std::make_shared<const ShellProlongation>(next_level_prolongation(h, 1))};
+  const double refresh = 0.05;
+  ProlongedElastics lazy(chain, shell_terms(mesh, false), mesh.vertices, refresh);
+  ProlongedElastics exact(chain, shell_terms(mesh, false), mesh.vertices);
+  const std::int64_t at_construction = lazy.finest_term_stats()[0].hessian_evaluations;  // pattern
+  const auto assemblies = [&] {
+    return lazy.finest_term_stats()[0].hessian_evaluations - at_construction;
+  };
+  const Positions coarse = h.levels[0].rest.vertices;
+  const Vector x = perturbed(coarse, 0.02, 6);
+  const Eigen::MatrixXd first = assembled_hessian(lazy, x, true);
+  EXPECT_EQ(assemblies(), 1);
+
+  Positions moved = as_positions(x);
+  moved.rowwise() += Eigen::RowVector3d(3.0, -2.0, 0.5);  // far, but a translation
+  moved(0, 1) += 0.4 * refresh;                          // and one vertex a little
+  EXPECT_EQ(assembled_hessian(lazy, as_dofs(moved), true), first);
+  EXPECT_EQ(assemblies(), 1);
+
+  const Mat3 turn = Eigen::AngleAxisd(0.5, Vec3::UnitY()).toRotationMatrix();
+  const Vector rotated = as_dofs(Positions(as_positions(x) * turn.transpose()));
+  const Eigen::MatrixXd after_turn = assembled_hessian(lazy, rotated, true);
+  EXPECT_EQ(assemblies(), 2);
+  EXPECT_LT(relative_error(after_turn, assembled_hessian(exact, rotated, true), 1e-6), 1e-12);
+  EXPECT_GT(relative_error(after_turn, first, 1e-6), 1e-2);
+
+  assembled_hessian(lazy, rotated, false);  // another projection
+  EXPECT_EQ(assemblies(), 3);
+  lazy.pin_finest_vertices({5}, mesh.vertices.row(5));  // another pinned set
+  assembled_hessian(lazy, rotated, false);
+  EXPECT_EQ(assemblies(), 4);
+  Vector broken = rotated;
+  broken[4] = std::numeric_limits<double>::quiet_NaN();
+  assembled_hessian(lazy, broken, false);
+  EXPECT_EQ(assemblies(), 5);
+
+  EXPECT_THROW(ProlongedElastics(chain, shell_terms(mesh, false), mesh.vertices, -1.0), Error);
+}

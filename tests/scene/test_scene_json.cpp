@@ -202,7 +202,8 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
       parse_scene(scene_text("", R"(, "progressive": {"coarse_levels": 2, "coarsening_ratio": 3.5,
                        "preview_iterations": 4, "preview_tolerance": 1e-4,
                        "prolongation": "direct", "proxy_hessian": "galerkin",
-                       "proximal": true, "preview_membrane": "tension_field"})"),
+                       "proximal": true, "preview_membrane": "tension_field",
+                       "galerkin_refresh": 0.5})"),
                   ".");
   EXPECT_EQ(scene.progressive.coarse_levels, 2);
   EXPECT_EQ(scene.progressive.coarsening_ratio, 3.5);
@@ -210,6 +211,7 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
   EXPECT_EQ(scene.progressive.preview_tolerance, 1e-4);
   EXPECT_EQ(scene.progressive.prolongation, ProxyProlongation::direct);
   EXPECT_EQ(scene.progressive.hessian, ProxyHessian::galerkin);
+  EXPECT_EQ(scene.progressive.galerkin_refresh, 0.5);
   EXPECT_TRUE(scene.progressive.proximal);
   EXPECT_EQ(scene.progressive.preview_membrane, MembraneModel::tension_field);
   EXPECT_TRUE(scene.progressive.enabled());
@@ -218,6 +220,11 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
   EXPECT_EQ(levels.progressive.prolongation, ProxyProlongation::composed);
   EXPECT_FALSE(levels.progressive.proximal);
   EXPECT_EQ(levels.progressive.preview_membrane, MembraneModel::neo_hookean);
+  EXPECT_EQ(levels.progressive.hessian, ProxyHessian::automatic);
+  EXPECT_EQ(levels.progressive.galerkin_refresh, 0.5);
+  const Scene automatic =
+      parse_scene(scene_text("", R"(, "progressive": {"levels": [5], "proxy_hessian": "auto"})"), ".");
+  EXPECT_EQ(automatic.progressive.hessian, ProxyHessian::automatic);
   EXPECT_FALSE(parse_scene(scene_text(), ".").progressive.enabled());
 }
 
@@ -227,6 +234,8 @@ TEST(SceneJson, RejectsBadProgressiveSettings) {
   expect_scene_error(scene_text("", R"(, "progressive": {"coarsening_ratio": 1})"),
                      "coarsening_ratio");
   expect_scene_error(scene_text("", R"(, "progressive": {"levels": [2]})"), "too small");
+  expect_scene_error(scene_text("", R"(, "progressive": {"galerkin_refresh": -0.1})"),
+                     "galerkin_refresh");
   expect_scene_error(scene_text("", R"(, "progressive": {"prolongation": "cubic"})"),
                      "unknown 'cubic'");
   expect_scene_error(scene_text("", R"(, "progressive": {"proxy_hessian": "exact"})"),

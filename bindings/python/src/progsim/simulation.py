@@ -343,6 +343,7 @@ class Simulation(NativeObject):
         line_search_extrapolation: Optional[bool] = None,
         crossing_start: Optional[bool] = None,
         consistency_weight: Optional[float] = None,
+        galerkin_refresh: Optional[float] = None,
         mode: str = "dynamic",
         prediction: Optional[str] = None,
         effects: Optional[Iterable[str]] = None,
@@ -391,6 +392,10 @@ class Simulation(NativeObject):
                 animation's consistency penalty w/(2h²)‖x − P(x_coarser)‖²_M pulling each
                 finer level toward the prolonged coarser frame (VPD eq. 4; 1 weighs it like
                 the inertia).
+            galerkin_refresh: mean finest edge lengths, in [0, 1e6]; default 0.5. A
+                progressive animation's Galerkin proxy Hessian is reassembled once the finest
+                state has moved this far (net of its mean translation) or Newton contracts
+                slowly; 0: every Newton iteration.
             mode: ``"dynamic"`` (implicit Euler) or ``"quasistatic"`` (energy minimisation
                 per load step).
             prediction: how a progressive animation's finer levels predict each step from
@@ -436,6 +441,7 @@ class Simulation(NativeObject):
             "line_search_extrapolation": line_search_extrapolation,
             "crossing_start": crossing_start,
             "consistency_weight": consistency_weight,
+            "galerkin_refresh": galerkin_refresh,
         }
         for keyword, value in values.items():
             if value is None:

@@ -299,6 +299,11 @@ pub struct SimulationDef {
     /// pulling each finer level toward the prolonged coarser frame (VPD eq. 4; 1 weighs it
     /// like the inertia), in [0, 1e12]; default 0 = off (`progressive.consistency_weight`).
     pub consistency_weight: f64,
+    /// A progressive animation's Galerkin proxy Hessian is reassembled once the finest state has
+    /// moved this many mean finest edge lengths (net of its mean translation) or Newton
+    /// contracts slowly, in [0, 1e6]; default 0.5; 0 = every Newton iteration
+    /// (`progressive.galerkin_refresh`).
+    pub galerkin_refresh: f64,
     /// How steps advance; default [`Mode::Dynamic`] (on several levels: a progressive
     /// animation).
     pub mode: Mode,
@@ -362,6 +367,7 @@ impl Default for SimulationDef {
             max_cg_iterations: raw.solver_max_cg_iterations,
             line_search_extrapolation: raw.solver_line_search_extrapolation != 0,
             consistency_weight: raw.progressive_consistency_weight,
+            galerkin_refresh: raw.progressive_galerkin_refresh,
             mode: Mode::from_raw(raw.mode).unwrap_or_default(),
             prediction: Prediction::from_raw(raw.prediction).unwrap_or_default(),
             effects: Effects::from_bits_retain(raw.effects),
@@ -404,6 +410,7 @@ impl SimulationDef {
         raw.solver_max_cg_iterations = self.max_cg_iterations;
         raw.solver_line_search_extrapolation = i32::from(self.line_search_extrapolation);
         raw.progressive_consistency_weight = self.consistency_weight;
+        raw.progressive_galerkin_refresh = self.galerkin_refresh;
         raw.mode = self.mode.to_raw();
         raw.prediction = self.prediction.to_raw();
         raw.effects = self.effects.bits();
@@ -635,6 +642,7 @@ mod tests {
         assert_eq!(def.mode, Mode::Dynamic);
         assert_eq!(def.prediction, Prediction::VelocityOnly);
         assert_eq!(def.consistency_weight, 0.0);
+        assert_eq!(def.galerkin_refresh, 0.5);
         assert_eq!(def.effects, Effect::Membrane | Effect::Bending | Effect::Gravity);
         assert_eq!(def.gravity, [0.0, -9.81, 0.0]);
         assert_eq!(def.pressure, 0.0);
@@ -651,6 +659,7 @@ mod tests {
             mode: Mode::Quasistatic,
             prediction: Prediction::PerFrame,
             consistency_weight: 0.5,
+            galerkin_refresh: 0.0,
             effects: Effect::Membrane.into(),
             gravity: [1.0, 2.0, 3.0],
             pinned_vertices: vec![3, 5],
@@ -670,6 +679,7 @@ mod tests {
         assert_eq!(raw.mode, sys::PS_MODE_QUASISTATIC);
         assert_eq!(raw.prediction, sys::PS_PREDICTION_PER_FRAME);
         assert_eq!(raw.progressive_consistency_weight, 0.5);
+        assert_eq!(raw.progressive_galerkin_refresh, 0.0);
         assert_eq!(raw.effects, sys::PS_EFFECT_MEMBRANE);
         assert_eq!(raw.gravity, [1.0, 2.0, 3.0]);
         assert_eq!(raw.num_pinned_vertices, 2);
