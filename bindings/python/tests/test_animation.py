@@ -59,6 +59,7 @@ def check_free_fall(sim, level, vx=0.0):
 def test_free_fall_matches_implicit_euler_on_every_level(falling):
     assert falling.kind == "progressive_dynamics" and falling.prediction == "velocity_only"
     assert falling.get_param("consistency_weight") == 0.0
+    assert falling.get_param("galerkin_refresh") == 0.5
     falling.step_preview(STEPS)
     falling.refine()
     falling.refine()
@@ -101,8 +102,11 @@ def test_refine_reports_each_step_and_cancelling_changes_nothing(falling):
 
 
 def test_options_from_keywords_and_scenes(levels):
-    with progsim.Simulation(levels, prediction="per_frame", consistency_weight=0.5) as sim:
+    with progsim.Simulation(
+        levels, prediction="per_frame", consistency_weight=0.5, galerkin_refresh=0
+    ) as sim:
         assert sim.prediction == "per_frame" and sim.get_param("consistency_weight") == 0.5
+        assert sim.get_param("galerkin_refresh") == 0.0
         sim.prediction = "prolonged_positions"
         assert sim.prediction == "prolonged_positions"
         with pytest.raises(progsim.InvalidArgumentError, match="the predictions are"):
