@@ -35,17 +35,21 @@ GalerkinHessian::GalerkinHessian(const ProlongationMatrix& intrinsic, Problem& f
          "Galerkin Hessian: the prolongation has " + std::to_string(lift_.rows()) +
              " fine DOFs, the finest problem " + std::to_string(finest.num_dofs()) +
              " (all of them free), the state " + std::to_string(at.size()));
-  mask_ = Eigen::VectorXd::Ones(lift_.rows());
   pattern_ = product(at, false, {});
 }
 
 GalerkinHessian::SparseMatrix GalerkinHessian::product(const Vector& fine_x, bool project_psd,
                                                        const std::vector<int>& pinned) {
-  mask_.setOnes();
-  for (int v : pinned) mask_.segment<3>(3 * v).setZero();
+  if (masked_lift_.size() == 0 || pinned != masked_pinned_) {  // M U and (M U)ᵀ, per pinned set
+    Eigen::VectorXd mask = Eigen::VectorXd::Ones(lift_.rows());
+    for (int v : pinned) mask.segment<3>(3 * v).setZero();
+    masked_lift_ = mask.asDiagonal() * lift_;
+    masked_lift_transpose_ = masked_lift_.transpose();
+    masked_pinned_ = pinned;
+  }
   const SparseMatrix full = finest_.hessian(fine_x, project_psd).selfadjointView<Eigen::Lower>();
-  const SparseMatrix masked = mask_.asDiagonal() * full * mask_.asDiagonal();
-  return SparseMatrix(lift_.transpose() * masked * lift_);  // Uᵀ H U, frozen offsets
+  const SparseMatrix h_lift = full * masked_lift_;
+  return SparseMatrix(masked_lift_transpose_ * h_lift);  // (MU)ᵀ H (MU), frozen offsets
 }
 
 void GalerkinHessian::pattern(int* rows, int* cols) const {

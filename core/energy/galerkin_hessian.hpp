@@ -55,7 +55,9 @@ class GalerkinHessian {
   Problem& finest_;
   SparseMatrix lift_;     // U ⊗ I₃ (3 n_L × 3 n_l)
   SparseMatrix pattern_;  // structure of Uᵀ H U
-  Eigen::VectorXd mask_;  // 1 for free finest DOFs, 0 for pinned ones
+  // M U and its transpose (M: 1 on free finest DOFs, 0 on pinned ones) for masked_pinned_.
+  SparseMatrix masked_lift_, masked_lift_transpose_;
+  std::vector<int> masked_pinned_;
   double refresh_distance_;
   // The last assembly: its entries, and the state, projection and pinned set it was made at.
   std::vector<double> last_values_;
