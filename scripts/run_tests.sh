@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test: installs what is needed, builds, and runs the C++ and C tests (normal build),
 # an installed-copy find_package check, the Python (cffi) and Rust (bindgen) binding tests,
-# then the C++/C tests again under AddressSanitizer + UBSan (clang) and 60 s of libFuzzer
+# then the C++/C tests again under AddressSanitizer + UBSan (clang) and 30 000 libFuzzer inputs
 # over the scene parser and mesh loaders. CI runs exactly this, with CI=true: the main job
 # (scripts/run_default.sh) then runs first on the same clone.
 set -euo pipefail
