@@ -231,17 +231,13 @@ void HingeBending::element_projected_hessian(int e, const LocalVector& xe, Local
   v /= v.norm();
   v[8] += v[8] >= 0.0 ? 1.0 : -1.0;  // Householder vector: I − 2vvᵀ/vᵀv maps the stretch to ∓e₉
   const Matrix9 reflector = Matrix9::Identity() - (2.0 / v.squaredNorm()) * v * v.transpose();
-  // Coefficient-based products (lazyProduct): at these fixed sizes Eigen's default path packs
-  // blocks for its GEMM kernel, which took a fifth of the projection's time in a profile.
-  const Matrix12x8 basis = q.lazyProduct(reflector.leftCols<8>());
-  const Matrix12x8 h_basis = h.lazyProduct(basis);
-  const Matrix8 reduced = basis.transpose().lazyProduct(h_basis);
+  const Matrix12x8 basis = q * reflector.leftCols<8>();
+  const Matrix8 reduced = basis.transpose() * h * basis;
   Eigen::SelfAdjointEigenSolver<Matrix8> eig(reduced);
   const Eigen::Matrix<double, 8, 1> lambda = eig.eigenvalues();
   if (lambda.minCoeff() >= 0.0) return;
-  const Matrix12x8 modes = basis.lazyProduct(eig.eigenvectors());
-  const Matrix12x8 scaled = modes * lambda.cwiseMax(0.0).asDiagonal();
-  h.noalias() = scaled.lazyProduct(modes.transpose());
+  const Matrix12x8 modes = basis * eig.eigenvectors();
+  h.noalias() = modes * lambda.cwiseMax(0.0).asDiagonal() * modes.transpose();
 }
 
 }  // namespace progsim
