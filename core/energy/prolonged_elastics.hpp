@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "energy/energy_term.hpp"
+#include "energy/galerkin_hessian.hpp"
 #include "hierarchy/shell_prolongation.hpp"
 #include "problem/problem.hpp"
-#include "energy/galerkin_hessian.hpp"
 
 namespace progsim {
 

@@ -381,11 +381,10 @@ ProgressiveSettings progressive(const Json& j) {
   p.prolongation = choice<ProxyProlongation>(
       j, "prolongation", where,
       {{"composed", ProxyProlongation::composed}, {"direct", ProxyProlongation::direct}});
-  p.hessian =
-      choice<ProxyHessian>(j, "proxy_hessian", where,
-                           {{"auto", ProxyHessian::automatic},
-                            {"level", ProxyHessian::level},
-                            {"galerkin", ProxyHessian::galerkin}});
+  p.hessian = choice<ProxyHessian>(j, "proxy_hessian", where,
+                                   {{"auto", ProxyHessian::automatic},
+                                    {"level", ProxyHessian::level},
+                                    {"galerkin", ProxyHessian::galerkin}});
   p.preview_membrane = choice<MembraneModel>(j, "preview_membrane", where,
                                              {{"neo_hookean", MembraneModel::neo_hookean},
                                               {"tension_field", MembraneModel::tension_field}});

@@ -8,11 +8,11 @@
 #include "energy/hinge_bending.hpp"
 #include "energy/lumped_mass.hpp"
 #include "energy/neo_hookean_membrane.hpp"
+#include "energy/prolonged_elastics.hpp"
 #include "hierarchy/hierarchy_test_meshes.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "mesh/mesh_topology.hpp"
-#include "energy/prolonged_elastics.hpp"
 #include "support/energy_checks.hpp"
 
 using namespace progsim;
@@ -33,6 +33,21 @@ std::vector<std::unique_ptr<EnergyTerm>> shell_terms(const TriangleMesh& mesh, b
         lumped_vertex_masses(mesh.vertices, mesh.faces, materials), Vec3(0.3, -9.81, 0.5)));
   return terms;
 }
+
+/// dome(9) with coarse levels of 20 and 50 vertices, and its per-level prolongations.
+struct DomeChain {
+  TriangleMesh mesh = dome(9);
+  MeshHierarchy hierarchy = build_hierarchy(mesh, options());
+  std::vector<std::shared_ptr<const ShellProlongation>> chain = {
+      std::make_shared<const ShellProlongation>(next_level_prolongation(hierarchy, 0)),
+      std::make_shared<const ShellProlongation>(next_level_prolongation(hierarchy, 1))};
+
+  static HierarchyOptions options() {
+    HierarchyOptions o;
+    o.coarse_vertex_counts = {20, 50};
+    return o;
+  }
+};
 
 struct ProxyCase {
   MeshHierarchy hierarchy;
@@ -109,13 +124,10 @@ TEST(ProlongedElastics, CountsFinestEvaluationsAndRejectsWrongSizes) {
 TEST(ProlongedElastics, GalerkinHessianIsTheFinestHessianProjectedByU) {
   // Independent reference: dense U (the product of the per-level intrinsic matrices) and the
   // finest terms' own Hessian at P(x), with a pinned finest vertex's rows and columns removed.
-  const TriangleMesh mesh = dome(9);
-  HierarchyOptions options;
-  options.coarse_vertex_counts = {20, 50};
-  const MeshHierarchy h = build_hierarchy(mesh, options);
-  const std::vector<std::shared_ptr<const ShellProlongation>> chain = {
-      std::make_shared<const ShellProlongation>(next_level_prolongation(h, 0)),
-      std::make_shared<const ShellProlongation>(next_level_prolongation(h, 1))};
+  const DomeChain dome_chain;
+  const TriangleMesh& mesh = dome_chain.mesh;
+  const MeshHierarchy& h = dome_chain.hierarchy;
+  const auto& chain = dome_chain.chain;
   ProlongedElastics proxy(chain, shell_terms(mesh, true), mesh.vertices);
   const std::vector<int> pinned = {5};
   proxy.pin_finest_vertices(pinned, mesh.vertices.row(5));
@@ -140,13 +152,10 @@ TEST(ProlongedElastics, GalerkinHessianIsReassembledOnlyBeyondTheRefreshDistance
   // moved, net of its mean translation, by at most the refresh distance at every vertex; past
   // it (a rotation, a NaN, another pinned set) it is the exact Uᵀ H U again, as a proxy that
   // assembles every time (checked against a dense reference above) computes it.
-  const TriangleMesh mesh = dome(9);
-  HierarchyOptions options;
-  options.coarse_vertex_counts = {20, 50};
-  const MeshHierarchy h = build_hierarchy(mesh, options);
-  const std::vector<std::shared_ptr<const ShellProlongation>> chain = {
-      std::make_shared<const ShellProlongation>(next_level_prolongation(h, 0)),
-      std::make_shared<const ShellProlongation>(next_level_prolongation(h, 1))};
+  const DomeChain dome_chain;
+  const TriangleMesh& mesh = dome_chain.mesh;
+  const MeshHierarchy& h = dome_chain.hierarchy;
+  const auto& chain = dome_chain.chain;
   const double refresh = 0.05;
   ProlongedElastics lazy(chain, shell_terms(mesh, false), mesh.vertices, refresh);
   ProlongedElastics exact(chain, shell_terms(mesh, false), mesh.vertices);
@@ -161,7 +170,7 @@ TEST(ProlongedElastics, GalerkinHessianIsReassembledOnlyBeyondTheRefreshDistance
 
   Positions moved = as_positions(x);
   moved.rowwise() += Eigen::RowVector3d(3.0, -2.0, 0.5);  // far, but a translation
-  moved(0, 1) += 0.4 * refresh;                          // and one vertex a little
+  moved(0, 1) += 0.4 * refresh;                           // and one vertex a little
   EXPECT_EQ(assembled_hessian(lazy, as_dofs(moved), true), first);
   EXPECT_EQ(assemblies(), 1);
 

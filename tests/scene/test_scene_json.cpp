@@ -222,8 +222,8 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
   EXPECT_EQ(levels.progressive.preview_membrane, MembraneModel::neo_hookean);
   EXPECT_EQ(levels.progressive.hessian, ProxyHessian::automatic);
   EXPECT_EQ(levels.progressive.galerkin_refresh, 0.5);
-  const Scene automatic =
-      parse_scene(scene_text("", R"(, "progressive": {"levels": [5], "proxy_hessian": "auto"})"), ".");
+  const Scene automatic = parse_scene(
+      scene_text("", R"(, "progressive": {"levels": [5], "proxy_hessian": "auto"})"), ".");
   EXPECT_EQ(automatic.progressive.hessian, ProxyHessian::automatic);
   EXPECT_FALSE(parse_scene(scene_text(), ".").progressive.enabled());
 }
