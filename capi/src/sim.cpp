@@ -76,6 +76,28 @@ Vec3 vec3_or(const double* v, const Vec3& fallback) {
   return v ? Vec3(v[0], v[1], v[2]) : fallback;
 }
 
+/// Throws ApiError(PS_ERROR_OUT_OF_RANGE) unless the scene has handle `handle`.
+void require_handle(const ps_sim& sim, int32_t handle) {
+  const auto n = static_cast<int32_t>(sim.scene.handles.size());
+  if (handle < 0 || handle >= n)
+    api_fail(PS_ERROR_OUT_OF_RANGE, "handle " + std::to_string(handle) +
+                                        " does not exist (the simulation has " + std::to_string(n) +
+                                        " handles)");
+}
+
+/// The reactions after the last solve on a level (empty before any, and on previews).
+const std::vector<HandleReaction>& last_reactions(const ps_sim& sim, int32_t level) {
+  level_mesh(*sim.hierarchy, level);  // range check with the ABI's message
+  if (sim.simulation) return sim.simulation->records()[level].reactions;
+  const std::vector<DynamicStepRecord>& steps = sim.dynamics->record(level).steps;
+  static const std::vector<HandleReaction> none;
+  return steps.empty() ? none : steps.back().reactions;
+}
+
+void copy3(const Vec3& v, double out[3]) {
+  for (int k = 0; k < 3; ++k) out[k] = v[k];
+}
+
 }  // namespace
 
 ps_sim_kind sim_kind(const ps_sim& sim) {
@@ -252,11 +274,7 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
                                         double angular_velocity, const double offset[3]) {
   return guarded(error_slot(sim), "ps_sim_set_handle_motion", [&] {
     require_idle(sim);
-    const auto n = static_cast<int32_t>(sim->scene.handles.size());
-    if (handle < 0 || handle >= n)
-      api_fail(PS_ERROR_OUT_OF_RANGE, "handle " + std::to_string(handle) +
-                                          " does not exist (the simulation has " +
-                                          std::to_string(n) + " handles)");
+    require_handle(*sim, handle);
     HandleMotion motion;
     motion.velocity = vec3_or(velocity, Vec3::Zero());
     motion.axis = vec3_or(axis, Vec3::UnitZ());
@@ -270,6 +288,32 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
       api_fail(PS_ERROR_INVALID_ARGUMENT, "the rotation axis must be non-zero and finite");
     motion.axis.normalize();
     edit_scene(*sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });
+  });
+}
+
+PS_API int32_t ps_sim_set_handle_axes(ps_sim* sim, int32_t handle, uint32_t axes) {
+  return guarded(error_slot(sim), "ps_sim_set_handle_axes", [&] {
+    require_idle(sim);
+    require_handle(*sim, handle);
+    edit_scene(*sim, [&](Scene& scene) { scene.handles[handle].axes = axes; });
+  });
+}
+
+PS_API int32_t ps_sim_get_handle_reaction(const ps_sim* sim, int32_t level, int32_t handle,
+                                          ps_handle_reaction* out) {
+  return guarded(error_slot(sim), "ps_sim_get_handle_reaction", [&] {
+    require_idle(sim);
+    require(out, "out");
+    require_handle(*sim, handle);
+    const std::vector<HandleReaction>& reactions = last_reactions(*sim, level);
+    if (reactions.empty())
+      api_fail(PS_ERROR_WRONG_CALL_ORDER,
+               "level " + std::to_string(level) +
+                   " has no reaction: no solve on it yet, or it is a preview level (its proxy "
+                   "holds the finest handle vertices)");
+    copy3(reactions[handle].force, out->force);
+    copy3(reactions[handle].moment, out->moment);
+    copy3(reactions[handle].point, out->point);
   });
 }
 

@@ -132,6 +132,7 @@ void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
   r.obstacle_vertices = obstacle_vertex_count();
   r.reduced_offsets = step.reduced_offsets;
   r.raised_limits = step.raised_limits;
+  r.reactions = step.reactions;
 }
 
 StepRecord ProgressiveSimulation::step() {

@@ -47,6 +47,9 @@ struct LevelRecord {
   /// its place (after refinement, progressive obstacles may take several solves).
   bool equilibrium = false;
   Positions positions;  ///< the state when the level was left (empty while current)
+  /// Per handle, what its support applied after the last solve (StepRecord::reactions; empty
+  /// before any solve and on preview levels).
+  std::vector<HandleReaction> reactions;
 };
 
 /// The PSQ driver. Level 0 is the coarsest; finest() is the scene's mesh. Quasistatic scenes
