@@ -85,18 +85,23 @@ void validate_contact(const Scene& scene) {
   check("material", "friction", g.friction);
 }
 
-void validate_handle(const Scene& scene, std::size_t h) {
-  const Handle& handle = scene.handles[h];
-  const std::string where = "handles[" + std::to_string(h) + "]";
-  if (handle.body < 0 || handle.body >= static_cast<int>(scene.bodies.size()))
-    fail(Status::invalid_scene,
-         where + ": body index " + std::to_string(handle.body) + " does not exist");
-  const int n = scene.bodies[handle.body].mesh.num_vertices();
-  if (handle.vertices.empty()) fail(Status::invalid_scene, where + ": selects no vertices");
-  for (int v : handle.vertices)
+/// A vertex group of handles and loads: an existing body, some vertices, each in its range.
+void validate_group(const Scene& scene, int body, const std::vector<int>& vertices,
+                    const std::string& where) {
+  if (body < 0 || body >= static_cast<int>(scene.bodies.size()))
+    fail(Status::invalid_scene, where + ": body index " + std::to_string(body) + " does not exist");
+  const int n = scene.bodies[body].mesh.num_vertices();
+  if (vertices.empty()) fail(Status::invalid_scene, where + ": selects no vertices");
+  for (int v : vertices)
     if (v < 0 || v >= n)
       fail(Status::invalid_scene, where + ": vertex " + std::to_string(v) +
                                       " is out of range [0, " + std::to_string(n) + ")");
+}
+
+void validate_handle(const Scene& scene, std::size_t h) {
+  const Handle& handle = scene.handles[h];
+  const std::string where = "handles[" + std::to_string(h) + "]";
+  validate_group(scene, handle.body, handle.vertices, where);
   validate_motion(handle.motion, where);
 }
 
@@ -106,19 +111,11 @@ void validate_handle(const Scene& scene, std::size_t h) {
 void validate_load(const Scene& scene, std::size_t k) {
   const Load& load = scene.loads[k];
   const std::string where = "loads[" + std::to_string(k) + "]";
-  if (load.body < 0 || load.body >= static_cast<int>(scene.bodies.size()))
-    fail(Status::invalid_scene,
-         where + ".body: body index " + std::to_string(load.body) + " does not exist");
+  validate_group(scene, load.body, load.vertices, where);
   const Positions& rest = scene.bodies[load.body].mesh.vertices;
-  if (load.vertices.empty()) fail(Status::invalid_scene, where + ": selects no vertices");
   Positions points(static_cast<Eigen::Index>(load.vertices.size()), 3);
-  for (std::size_t j = 0; j < load.vertices.size(); ++j) {
-    const int v = load.vertices[j];
-    if (v < 0 || v >= rest.rows())
-      fail(Status::invalid_scene, where + ".vertices: vertex " + std::to_string(v) +
-                                      " is out of range [0, " + std::to_string(rest.rows()) + ")");
-    points.row(static_cast<Eigen::Index>(j)) = rest.row(v);
-  }
+  for (std::size_t j = 0; j < load.vertices.size(); ++j)
+    points.row(static_cast<Eigen::Index>(j)) = rest.row(load.vertices[j]);
   if (!load.force.allFinite()) fail(Status::invalid_scene, where + ".force has a non-finite value");
   if (!std::isfinite(load.moment) || !load.moment_axis.allFinite())
     fail(Status::invalid_scene, where + ".moment has a non-finite value");

@@ -136,12 +136,12 @@ TEST(LoadScene, BadLoadsAreRefusedNamingTheLoad) {
   };
   refused([&](Load& l) { l.force.y() = nan; }, {"loads[1].force has a non-finite value"});
   refused([&](Load& l) { l.moment = INFINITY; }, {"loads[1].moment has a non-finite value"});
-  refused([](Load& l) { l.vertices.push_back(27); }, {"loads[1].vertices", "27", "[0, 27)"});
-  refused([](Load& l) { l.vertices.push_back(-1); }, {"loads[1].vertices", "-1"});
+  refused([](Load& l) { l.vertices.push_back(27); }, {"loads[1]: vertex 27", "[0, 27)"});
+  refused([](Load& l) { l.vertices.push_back(-1); }, {"loads[1]: vertex -1"});
   refused([](Load& l) { l.vertices.clear(); }, {"loads[1]", "selects no vertices"});
   refused([](Load& l) { l.moment_axis.setZero(); }, {"loads[1].moment.axis must be non-zero"});
   refused([](Load& l) { l.ramp = -0.1; }, {"loads[1].ramp"});
-  refused([](Load& l) { l.body = 1; }, {"loads[1].body", "does not exist"});
+  refused([](Load& l) { l.body = 1; }, {"loads[1]: body index 1 does not exist"});
   refused(
       [](Load& l) {
         l.vertices = {8, 17, 26};
@@ -167,7 +167,7 @@ TEST(LoadScene, MalformedJsonLoadsAreRefused) {
   refused(R"("force": [0, 0, -0.02])", R"("force": [0, "a", 0])", {"loads[0].force[1]"});
   refused(R"("magnitude": 0.001)", R"("size": 0.001)", {"loads[1].moment", "size"});
   refused(R"("min": [0.34, -1, -1])", R"("min": [2, -1, -1])", {"loads[1]", "selects no"});
-  refused(R"("vertices": [8, 17, 26])", R"("vertices": [8, 17, 99])", {"loads[0].vertices"});
+  refused(R"("vertices": [8, 17, 26])", R"("vertices": [8, 17, 99])", {"loads[0]: vertex 99"});
   refused(R"("ramp": 0.02)", R"("ramp": -1)", {"loads[1].ramp"});
   refused(R"("body": "strip", "vertices")", R"("body": "rod", "vertices")", {"loads[0].body"});
 }

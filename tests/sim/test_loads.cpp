@@ -7,6 +7,7 @@
 
 #include "energy/dead_loads.hpp"
 #include "mesh/mesh_generators.hpp"
+#include "progressive/progressive_dynamics.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "sim/level_simulation.hpp"
 
@@ -132,4 +133,20 @@ TEST(Loads, ProgressiveLevelsCarryTheLoadToTheFinestVertices) {
   direct.step();
   EXPECT_NEAR(tip_height(psq.positions(psq.finest())), tip_height(Positions(direct.positions())),
               1e-6);
+}
+
+TEST(Loads, ProgressiveAnimationPreviewEvaluatesTheFinestLoads) {
+  Scene scene = loaded_cantilever(Vec3(0, 0, -1e-3));
+  scene.mode = StepMode::dynamic;
+  scene.duration = 3 * scene.time_step;
+  scene.progressive.level_vertices = {40};
+  ProgressiveDynamics animation(scene);
+  std::int64_t gradients = 0;
+  for (int step = 0; step < 3; ++step)
+    for (const TermStats& s : animation.step_preview().terms)
+      if (s.name == "loads@finest") gradients += s.gradient_evaluations;
+  EXPECT_GT(gradients, 0) << "the dynamic preview's proxy evaluates the finest level's loads";
+  Positions x, v;
+  animation.read_frame(0, 3, x, v);
+  EXPECT_LT(x.col(2).minCoeff(), 0.0) << "the tip force accelerates the strip down";
 }

@@ -78,7 +78,7 @@ fn bad_loads_are_refused_and_change_nothing() {
     refused(&mut sim, Load { vertices: vec![27], ..tip_force() }, "vertex 27 is out of range");
     refused(&mut sim, Load { vertices: vec![], ..tip_force() }, "selects no vertices");
     refused(&mut sim, Load { ramp: -1.0, ..tip_force() }, "loads[2].ramp");
-    refused(&mut sim, Load { body: 3, ..tip_force() }, "loads[2].body");
+    refused(&mut sim, Load { body: 3, ..tip_force() }, "loads[2]: body index 3");
     let twist = Load { moment: 1.0, moment_axis: [0.0, 1.0, 0.0], ..tip_force() };
     refused(&mut sim, twist, "loads[2].moment"); // the tip edge lies along y
     assert_eq!(sim.num_loads(), 2);
