@@ -57,6 +57,7 @@ from .hierarchy import Hierarchy  # noqa: E402
 from .simulation import (  # noqa: E402
     EFFECTS,
     KINDS,
+    LOAD_DISTRIBUTIONS,
     MODES,
     PARAMETERS,
     PREDICTIONS,
@@ -95,6 +96,7 @@ __all__ = [
     "STEP_STATS_DTYPE",
     "EFFECTS",
     "KINDS",
+    "LOAD_DISTRIBUTIONS",
     "MODES",
     "PARAMETERS",
     "PREDICTIONS",
