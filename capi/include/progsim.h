@@ -312,6 +312,14 @@ typedef struct ps_sim_def {
    *  Hessian is reassembled once the finest state has moved this far (net of its mean
    *  translation) or Newton contracts slowly; 0: every Newton iteration (`progsim params`) */
   double progressive_galerkin_refresh;
+  /** ≥ 1; default 8: PSQ's Newton iterations per preview step on a coarse level (PSQ §4.5) */
+  int32_t progressive_preview_iterations;
+  /** 1, [0, 1]; default 0 (solver_newton_tolerance): tolerance of preview solves and of a
+   *  preview level being at rest (PSQ Algorithm 1 line 10) */
+  double progressive_preview_tolerance;
+  /** 0 (default) or 1: quasistatic steps add PSQ eq. 1's proximal term on every level and in
+   *  the direct baseline, keeping free bodies' Newton matrices definite (`progsim params`) */
+  int32_t progressive_proximal;
   ps_mode mode; /**< default PS_MODE_DYNAMIC */
   /** a progressive animation's prediction; default PS_PREDICTION_VELOCITY_ONLY */
   ps_prediction prediction;

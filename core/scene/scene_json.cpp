@@ -428,15 +428,15 @@ ProgressiveSettings progressive(const Json& j) {
   if (j.contains("coarse_levels"))
     p.coarse_levels = integer(j.at("coarse_levels"), where + ".coarse_levels");
   p.coarsening_ratio = number_or(j, "coarsening_ratio", p.coarsening_ratio, where);
-  p.preview_tolerance = number_or(j, "preview_tolerance", p.preview_tolerance, where);
+  p.preview_tolerance = parameter(j, "progressive", "preview_tolerance", where);
   p.consistency_weight = parameter(j, "progressive", "consistency_weight", where);
   p.galerkin_refresh = parameter(j, "progressive", "galerkin_refresh", where);
-  if (j.contains("preview_iterations"))
-    p.preview_iterations = integer(j.at("preview_iterations"), where + ".preview_iterations");
-  if (j.contains("proximal")) {
-    if (!j.at("proximal").is_boolean()) scene_error(where + ".proximal", "must be true or false");
+  p.preview_iterations = static_cast<int>(parameter(j, "progressive", "preview_iterations", where));
+  if (j.contains("proximal") &&
+      j.at("proximal").is_boolean())  // true/false, or 1/0 as a table switch
     p.proximal = j.at("proximal").get<bool>();
-  }
+  else
+    p.proximal = parameter(j, "progressive", "proximal", where) != 0.0;
   p.prolongation = choice<ProxyProlongation>(
       j, "prolongation", where,
       {{"composed", ProxyProlongation::composed}, {"direct", ProxyProlongation::direct}});

@@ -219,6 +219,9 @@ TEST(SceneJson, ReadsTheProgressiveSection) {
   EXPECT_EQ(levels.progressive.level_vertices, (std::vector<int>{5, 9}));
   EXPECT_EQ(levels.progressive.prolongation, ProxyProlongation::composed);
   EXPECT_FALSE(levels.progressive.proximal);
+  EXPECT_EQ(levels.progressive.preview_iterations, 8);  // the table's default
+  EXPECT_TRUE(parse_scene(scene_text("", R"(, "progressive": {"levels": [5], "proximal": 1})"), ".")
+                  .progressive.proximal);  // 1/0 as a table switch
   EXPECT_EQ(levels.progressive.preview_membrane, MembraneModel::neo_hookean);
   EXPECT_EQ(levels.progressive.hessian, ProxyHessian::automatic);
   EXPECT_EQ(levels.progressive.galerkin_refresh, 0.5);
@@ -236,6 +239,13 @@ TEST(SceneJson, RejectsBadProgressiveSettings) {
   expect_scene_error(scene_text("", R"(, "progressive": {"levels": [2]})"), "too small");
   expect_scene_error(scene_text("", R"(, "progressive": {"galerkin_refresh": -0.1})"),
                      "galerkin_refresh");
+  expect_scene_error(scene_text("", R"(, "progressive": {"preview_iterations": 0})"),
+                     "progressive.preview_iterations");
+  expect_scene_error(scene_text("", R"(, "progressive": {"preview_iterations": 2.5})"),
+                     "whole number");
+  expect_scene_error(scene_text("", R"(, "progressive": {"preview_tolerance": 2})"),
+                     "progressive.preview_tolerance");
+  expect_scene_error(scene_text("", R"(, "progressive": {"proximal": 2})"), "progressive.proximal");
   expect_scene_error(scene_text("", R"(, "progressive": {"prolongation": "cubic"})"),
                      "unknown 'cubic'");
   expect_scene_error(scene_text("", R"(, "progressive": {"proxy_hessian": "exact"})"),
@@ -244,5 +254,5 @@ TEST(SceneJson, RejectsBadProgressiveSettings) {
                      "unknown 'linear' (known: neo_hookean, tension_field)");
   expect_scene_error(scene_text("", R"(, "progressive": {"preview_iterations": 0})"),
                      "preview_iterations");
-  expect_scene_error(scene_text("", R"(, "progressive": {"proximal": 1})"), "true or false");
+  expect_scene_error(scene_text("", R"(, "progressive": {"proximal": "yes"})"), "proximal");
 }

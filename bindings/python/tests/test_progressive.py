@@ -280,3 +280,28 @@ def test_hierarchy_contact_offset_is_checked():
         CROSSING.with_suffix(".obj"), coarse_vertex_counts=[40], contact_offset=2.5e-4
     ) as hierarchy:
         assert hierarchy.num_levels == 2
+
+
+def test_preview_settings_from_keywords_cap_the_preview():
+    """preview_iterations, preview_tolerance and proximal reach the core through ps_sim_def."""
+    with progsim.Hierarchy.from_file(
+        MESH, coarse_vertex_counts=[40, 120], pinned=TOP_ROW
+    ) as hierarchy:
+        with progsim.Simulation(
+            hierarchy,
+            mode="quasistatic",
+            time_step=1.0,
+            pinned=TOP_ROW,
+            preview_iterations=1,
+            preview_tolerance=1e-4,
+            proximal=True,
+        ) as sim:
+            assert sim.get_param("preview_iterations") == 1
+            assert sim.get_param("preview_tolerance") == 1e-4
+            assert sim.get_param("proximal") == 1
+            sim.step_preview(3)
+            assert sim.level_stats(0).newton_iterations <= 3  # one per preview step
+            sim.set_param("preview_iterations", 8)
+            assert sim.get_param("progressive.preview_iterations") == 8
+            with pytest.raises(progsim.InvalidArgumentError, match="preview_iterations"):
+                sim.set_param("preview_iterations", 0)

@@ -373,6 +373,9 @@ class Simulation(NativeObject):
         crossing_start: Optional[bool] = None,
         consistency_weight: Optional[float] = None,
         galerkin_refresh: Optional[float] = None,
+        preview_iterations: Optional[int] = None,
+        preview_tolerance: Optional[float] = None,
+        proximal: Optional[bool] = None,
         mode: str = "dynamic",
         prediction: Optional[str] = None,
         effects: Optional[Iterable[str]] = None,
@@ -427,6 +430,12 @@ class Simulation(NativeObject):
                 progressive animation's Galerkin proxy Hessian is reassembled once the finest
                 state has moved this far (net of its mean translation) or Newton contracts
                 slowly; 0: every Newton iteration.
+            preview_iterations: >= 1; default 8. PSQ's Newton iterations per preview step on
+                a coarse level (PSQ §4.5).
+            preview_tolerance: dimensionless, in [0, 1]; default 0 (``newton_tolerance``).
+                Tolerance of preview solves and of a preview level being at rest.
+            proximal: default False. True adds PSQ eq. 1's proximal term to quasistatic steps
+                on every level and in the direct baseline (keeps free bodies solvable).
             mode: ``"dynamic"`` (implicit Euler) or ``"quasistatic"`` (energy minimisation
                 per load step).
             prediction: how a progressive animation's finer levels predict each step from
@@ -474,6 +483,9 @@ class Simulation(NativeObject):
             "crossing_start": crossing_start,
             "consistency_weight": consistency_weight,
             "galerkin_refresh": galerkin_refresh,
+            "preview_iterations": preview_iterations,
+            "preview_tolerance": preview_tolerance,
+            "proximal": proximal,
         }
         for keyword, value in values.items():
             if value is None:

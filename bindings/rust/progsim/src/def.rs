@@ -308,6 +308,15 @@ pub struct SimulationDef {
     /// contracts slowly, in [0, 1e6]; default 0.5; 0 = every Newton iteration
     /// (`progressive.galerkin_refresh`).
     pub galerkin_refresh: f64,
+    /// PSQ's Newton iterations per preview step on a coarse level (PSQ §4.5), ≥ 1; default 8
+    /// (`progressive.preview_iterations`).
+    pub preview_iterations: i32,
+    /// Tolerance of preview solves and of a preview level being at rest, in [0, 1]; default 0 =
+    /// [`newton_tolerance`](Self::newton_tolerance) (`progressive.preview_tolerance`).
+    pub preview_tolerance: f64,
+    /// Quasistatic steps add PSQ eq. 1's proximal term on every level and in the direct
+    /// baseline, keeping free bodies solvable; default false (`progressive.proximal`).
+    pub proximal: bool,
     /// How steps advance; default [`Mode::Dynamic`] (on several levels: a progressive
     /// animation).
     pub mode: Mode,
@@ -373,6 +382,9 @@ impl Default for SimulationDef {
             line_search_extrapolation: raw.solver_line_search_extrapolation != 0,
             consistency_weight: raw.progressive_consistency_weight,
             galerkin_refresh: raw.progressive_galerkin_refresh,
+            preview_iterations: raw.progressive_preview_iterations,
+            preview_tolerance: raw.progressive_preview_tolerance,
+            proximal: raw.progressive_proximal != 0,
             mode: Mode::from_raw(raw.mode).unwrap_or_default(),
             prediction: Prediction::from_raw(raw.prediction).unwrap_or_default(),
             effects: Effects::from_bits_retain(raw.effects),
@@ -417,6 +429,9 @@ impl SimulationDef {
         raw.solver_line_search_extrapolation = i32::from(self.line_search_extrapolation);
         raw.progressive_consistency_weight = self.consistency_weight;
         raw.progressive_galerkin_refresh = self.galerkin_refresh;
+        raw.progressive_preview_iterations = self.preview_iterations;
+        raw.progressive_preview_tolerance = self.preview_tolerance;
+        raw.progressive_proximal = i32::from(self.proximal);
         raw.mode = self.mode.to_raw();
         raw.prediction = self.prediction.to_raw();
         raw.effects = self.effects.bits();
@@ -698,6 +713,7 @@ mod tests {
         assert_eq!(def.prediction, Prediction::VelocityOnly);
         assert_eq!(def.consistency_weight, 0.0);
         assert_eq!(def.galerkin_refresh, 0.5);
+        assert_eq!((def.preview_iterations, def.preview_tolerance, def.proximal), (8, 0.0, false));
         assert_eq!(def.gravity_ramp, 0.0);
         assert_eq!(def.effects, Effect::Membrane | Effect::Bending | Effect::Gravity);
         assert_eq!(def.gravity, [0.0, -9.81, 0.0]);
@@ -717,6 +733,9 @@ mod tests {
             prediction: Prediction::PerFrame,
             consistency_weight: 0.5,
             galerkin_refresh: 0.0,
+            preview_iterations: 3,
+            preview_tolerance: 1e-3,
+            proximal: true,
             effects: Effect::Membrane.into(),
             gravity: [1.0, 2.0, 3.0],
             pinned_vertices: vec![3, 5],
@@ -738,6 +757,9 @@ mod tests {
         assert_eq!(raw.prediction, sys::PS_PREDICTION_PER_FRAME);
         assert_eq!(raw.progressive_consistency_weight, 0.5);
         assert_eq!(raw.progressive_galerkin_refresh, 0.0);
+        assert_eq!(raw.progressive_preview_iterations, 3);
+        assert_eq!(raw.progressive_preview_tolerance, 1e-3);
+        assert_eq!(raw.progressive_proximal, 1);
         assert_eq!(raw.effects, sys::PS_EFFECT_MEMBRANE);
         assert_eq!(raw.gravity, [1.0, 2.0, 3.0]);
         assert_eq!(raw.num_pinned_vertices, 2);
