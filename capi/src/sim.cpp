@@ -1,6 +1,4 @@
 // ps_sim_*: creating simulations and changing their parameters between steps.
-#include <cmath>
-
 #include "handles.hpp"
 #include "scene/scene_json.hpp"
 #include "scene/scene_parameters.hpp"
@@ -74,6 +72,37 @@ const char* kind_name(ps_sim_kind kind) {
 
 Vec3 vec3_or(const double* v, const Vec3& fallback) {
   return v ? Vec3(v[0], v[1], v[2]) : fallback;
+}
+
+/// PS_ERROR_OUT_OF_RANGE unless `handle` is one of the simulation's handles.
+void check_handle(const ps_sim& sim, int32_t handle) {
+  const auto n = static_cast<int32_t>(sim.scene.handles.size());
+  if (handle < 0 || handle >= n)
+    api_fail(PS_ERROR_OUT_OF_RANGE, "handle " + std::to_string(handle) +
+                                        " does not exist (the simulation has " + std::to_string(n) +
+                                        " handles)");
+}
+
+/// Validates `motion` as an argument (the core's rules) and scripts handle `handle` with it.
+void set_motion(ps_sim& sim, int32_t handle, HandleMotion motion) {
+  validate_motion(motion, "handles[" + std::to_string(handle) + "].motion",
+                  Status::invalid_argument);
+  motion.axis.normalize();
+  edit_scene(sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });
+}
+
+Interpolation interpolation_from_enum(int32_t interpolation) {
+  switch (interpolation) {
+    case PS_INTERPOLATION_HOLD:
+      return Interpolation::hold;
+    case PS_INTERPOLATION_LINEAR:
+      return Interpolation::linear;
+    case PS_INTERPOLATION_SMOOTH:
+      return Interpolation::smooth;
+    default:
+      api_fail(PS_ERROR_INVALID_ARGUMENT,
+               "interpolation = " + std::to_string(interpolation) + " is not a ps_interpolation");
+  }
 }
 
 }  // namespace
@@ -252,24 +281,34 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
                                         double angular_velocity, const double offset[3]) {
   return guarded(error_slot(sim), "ps_sim_set_handle_motion", [&] {
     require_idle(sim);
-    const auto n = static_cast<int32_t>(sim->scene.handles.size());
-    if (handle < 0 || handle >= n)
-      api_fail(PS_ERROR_OUT_OF_RANGE, "handle " + std::to_string(handle) +
-                                          " does not exist (the simulation has " +
-                                          std::to_string(n) + " handles)");
+    check_handle(*sim, handle);
     HandleMotion motion;
     motion.velocity = vec3_or(velocity, Vec3::Zero());
     motion.axis = vec3_or(axis, Vec3::UnitZ());
     motion.center = vec3_or(center, Vec3::Zero());
     motion.angular_velocity = angular_velocity;
     motion.offset = vec3_or(offset, Vec3::Zero());
-    if (!motion.velocity.allFinite() || !motion.center.allFinite() || !motion.offset.allFinite() ||
-        !std::isfinite(angular_velocity))
-      api_fail(PS_ERROR_INVALID_ARGUMENT, "the motion has a non-finite value");
-    if (!(motion.axis.norm() > 0.0) || !motion.axis.allFinite())
-      api_fail(PS_ERROR_INVALID_ARGUMENT, "the rotation axis must be non-zero and finite");
-    motion.axis.normalize();
-    edit_scene(*sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });
+    set_motion(*sim, handle, motion);
+  });
+}
+
+PS_API int32_t ps_sim_set_handle_keyframes(ps_sim* sim, int32_t handle, const double* rows,
+                                           size_t num_rows, int32_t interpolation) {
+  return guarded(error_slot(sim), "ps_sim_set_handle_keyframes", [&] {
+    require_idle(sim);
+    check_handle(*sim, handle);
+    require(rows, "rows");
+    if (num_rows == 0) api_fail(PS_ERROR_INVALID_ARGUMENT, "num_rows = 0: give at least one key");
+    HandleMotion motion;
+    motion.center = sim->scene.handles[handle].motion.center;
+    motion.offset = sim->scene.handles[handle].motion.offset;
+    motion.interpolation = interpolation_from_enum(interpolation);
+    for (std::size_t k = 0; k < num_rows; ++k) {
+      const double* row = rows + 8 * k;  // time, tx, ty, tz, ax, ay, az, angle
+      motion.keyframes.push_back(
+          {row[0], Vec3(row[1], row[2], row[3]), Vec3(row[4], row[5], row[6]), row[7]});
+    }
+    set_motion(*sim, handle, motion);
   });
 }
 

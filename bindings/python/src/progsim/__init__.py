@@ -56,6 +56,7 @@ from .accuracy import Accuracy, AccuracyRow  # noqa: E402 - after the version ch
 from .hierarchy import Hierarchy  # noqa: E402
 from .simulation import (  # noqa: E402
     EFFECTS,
+    INTERPOLATIONS,
     KINDS,
     MODES,
     PARAMETERS,
@@ -92,6 +93,7 @@ __all__ = [
     "Frame",
     "STEP_STATS_DTYPE",
     "EFFECTS",
+    "INTERPOLATIONS",
     "KINDS",
     "MODES",
     "PARAMETERS",

@@ -62,8 +62,8 @@ use progsim_sys as sys;
 pub use accuracy::{Accuracy, AccuracyDef, AccuracyRow, Method};
 pub use animation::{DynamicLevelStats, Frame, Prediction, SimulationKind, StepStats};
 pub use def::{
-    Effect, Effects, HandleMotion, HierarchyDef, LevelStats, Mode, RefinementStats, SimulationDef,
-    StrainCorrectionStats,
+    Effect, Effects, HandleMotion, HierarchyDef, Interpolation, Keyframe, LevelStats, Mode,
+    RefinementStats, SimulationDef, StrainCorrectionStats,
 };
 pub use error::{Error, Result, Status};
 pub use hierarchy::Hierarchy;

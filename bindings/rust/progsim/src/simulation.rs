@@ -14,8 +14,8 @@ use progsim_sys as sys;
 use crate::error::{check, check_thread};
 use crate::{
     c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
-    CallbackScope, Effect, Effects, Error, HandleMotion, Hierarchy, LevelStats, Mode, Result,
-    SimulationDef, Status,
+    CallbackScope, Effect, Effects, Error, HandleMotion, Hierarchy, Interpolation, Keyframe,
+    LevelStats, Mode, Result, SimulationDef, Status,
 };
 
 /// A simulation of one [`Hierarchy`]: preview steps at the current level (starting at level
@@ -219,6 +219,40 @@ impl<'h> Simulation<'h> {
                 motion.center.as_ptr(),
                 motion.angular_velocity,
                 motion.offset.as_ptr(),
+            )
+        };
+        self.check(status)
+    }
+
+    /// Scripts handle `handle` by keyframes from the next step on, interpolated by
+    /// `interpolation`: x(t) = c + R(t)(x̄ − c) + T(t) + offset with c and offset those of the
+    /// handle's current motion; translations blend componentwise, rotations about one axis by
+    /// their angle (a segment may turn several times), about different axes by slerp. Before
+    /// the first key its pose, after the last held. Replaces the velocity and angular velocity.
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the handle does not exist; [`Status::InvalidArgument`] for no
+    /// keys, a NaN/Inf value, a zero axis or times not strictly increasing (the message names
+    /// the key). On error the motion is unchanged.
+    pub fn set_handle_keyframes(
+        &mut self,
+        handle: usize,
+        keys: &[Keyframe],
+        interpolation: Interpolation,
+    ) -> Result<()> {
+        let raw = self.handle()?;
+        let handle = i32::try_from(handle).map_err(|_| {
+            Error::new(Status::OutOfRange, format!("handle {handle} does not exist"))
+        })?;
+        let rows: Vec<[f64; 8]> = keys.iter().map(Keyframe::row).collect();
+        // SAFETY: live simulation; `rows` holds keys.len() rows of 8 doubles alive for the call.
+        let status = unsafe {
+            sys::ps_sim_set_handle_keyframes(
+                raw,
+                handle,
+                rows.as_ptr().cast::<f64>(),
+                rows.len(),
+                interpolation.to_raw() as i32,
             )
         };
         self.check(status)
