@@ -742,7 +742,7 @@ class Simulation(NativeObject):
         """Scripts handle ``handle`` from the next step on.
 
         Its vertices follow x(t) = c + R(ω t)(x̄ − c) + v t + offset, with t the simulated
-        time and x̄ the rest position.
+        time and x̄ the rest position. Replaces keyframes (:meth:`set_handle_keyframes`).
 
         Args:
             handle: handle index, ``0 <= handle < num_handles``.

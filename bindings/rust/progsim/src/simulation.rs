@@ -199,7 +199,8 @@ impl<'h> Simulation<'h> {
     }
 
     /// Scripts handle `handle` (0 ≤ handle < [`num_handles`](Self::num_handles)) from the
-    /// next step on; see [`HandleMotion`].
+    /// next step on; see [`HandleMotion`]. Replaces keyframes
+    /// ([`set_handle_keyframes`](Self::set_handle_keyframes)).
     ///
     /// # Errors
     /// [`Status::OutOfRange`] if the handle does not exist; [`Status::InvalidArgument`] for a
