@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 13
+#define PS_VERSION_MINOR 14
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -487,6 +487,42 @@ PS_API int32_t ps_sim_num_handles(const ps_sim* sim, int32_t* out);
 PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const double velocity[3],
                                         const double axis[3], const double center[3],
                                         double angular_velocity, const double offset[3]);
+
+/** The world coordinates a handle prescribes; combine with |. */
+typedef enum ps_axis {
+  PS_AXIS_X = 1 << 0,
+  PS_AXIS_Y = 1 << 1,
+  PS_AXIS_Z = 1 << 2,
+  PS_AXIS_ALL = PS_AXIS_X | PS_AXIS_Y | PS_AXIS_Z, /**< a clamp (every handle's default) */
+  PS_AXIS_FORCE32 = 0x7fffffff
+} ps_axis;
+
+/**
+ * Makes handle `handle` prescribe only the coordinates in `axes` (ps_axis bits) from the next
+ * step on; its vertices move freely along the others: a roller (e.g. PS_AXIS_Y: held in
+ * height, free to slide in x and z) or a symmetry plane (the axis normal to it). Scene key
+ * handles[i].axes. Errors: PS_ERROR_OUT_OF_RANGE (no such handle), PS_ERROR_INVALID_SCENE
+ * (no axis, or bits other than PS_AXIS_ALL).
+ */
+PS_API int32_t ps_sim_set_handle_axes(ps_sim* sim, int32_t handle, uint32_t axes);
+
+/** The force and moment a handle's support applies to the shell. */
+typedef struct ps_handle_reaction {
+  double force[3];  /**< N, Σ over its vertices; 0 along the coordinates it leaves free */
+  double moment[3]; /**< N·m, Σ (x_i − point) × R_i */
+  double point[3];  /**< m, centroid of the handle's vertices */
+} ps_handle_reaction;
+
+/**
+ * What handle `handle`'s support applied after the last solve on `level` (R = ∂E/∂x at the
+ * prescribed coordinates, E the step's objective: in a quasistatic step it balances the
+ * loads; in a dynamic one it also accelerates the handle's mass) into *out. In a progressive
+ * animation: after the level's last computed step. Errors: PS_ERROR_OUT_OF_RANGE (no such
+ * level or handle), PS_ERROR_WRONG_CALL_ORDER (no solve on the level yet, or it is a preview
+ * level, whose proxy holds the finest handle vertices and reports no reaction).
+ */
+PS_API int32_t ps_sim_get_handle_reaction(const ps_sim* sim, int32_t level, int32_t handle,
+                                          ps_handle_reaction* out);
 
 /**
  * Scripts handle `handle` by keyframes from the next step on, replacing its motion: its

@@ -74,8 +74,8 @@ Vec3 vec3_or(const double* v, const Vec3& fallback) {
   return v ? Vec3(v[0], v[1], v[2]) : fallback;
 }
 
-/// PS_ERROR_OUT_OF_RANGE unless `handle` is one of the simulation's handles.
-void check_handle(const ps_sim& sim, int32_t handle) {
+/// Throws ApiError(PS_ERROR_OUT_OF_RANGE) unless the scene has handle `handle`.
+void require_handle(const ps_sim& sim, int32_t handle) {
   const auto n = static_cast<int32_t>(sim.scene.handles.size());
   if (handle < 0 || handle >= n)
     api_fail(PS_ERROR_OUT_OF_RANGE, "handle " + std::to_string(handle) +
@@ -103,6 +103,19 @@ Interpolation interpolation_from_enum(int32_t interpolation) {
       api_fail(PS_ERROR_INVALID_ARGUMENT,
                "interpolation = " + std::to_string(interpolation) + " is not a ps_interpolation");
   }
+}
+
+/// The reactions after the last solve on a level (empty before any, and on previews).
+const std::vector<HandleReaction>& last_reactions(const ps_sim& sim, int32_t level) {
+  level_mesh(*sim.hierarchy, level);  // range check with the ABI's message
+  if (sim.simulation) return sim.simulation->records()[level].reactions;
+  const std::vector<DynamicStepRecord>& steps = sim.dynamics->record(level).steps;
+  static const std::vector<HandleReaction> none;
+  return steps.empty() ? none : steps.back().reactions;
+}
+
+void copy3(const Vec3& v, double out[3]) {
+  for (int k = 0; k < 3; ++k) out[k] = v[k];
 }
 
 }  // namespace
@@ -281,7 +294,7 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
                                         double angular_velocity, const double offset[3]) {
   return guarded(error_slot(sim), "ps_sim_set_handle_motion", [&] {
     require_idle(sim);
-    check_handle(*sim, handle);
+    require_handle(*sim, handle);
     HandleMotion motion;
     motion.velocity = vec3_or(velocity, Vec3::Zero());
     motion.axis = vec3_or(axis, Vec3::UnitZ());
@@ -296,7 +309,7 @@ PS_API int32_t ps_sim_set_handle_keyframes(ps_sim* sim, int32_t handle, const do
                                            size_t num_rows, int32_t interpolation) {
   return guarded(error_slot(sim), "ps_sim_set_handle_keyframes", [&] {
     require_idle(sim);
-    check_handle(*sim, handle);
+    require_handle(*sim, handle);
     require(rows, "rows");
     if (num_rows == 0) api_fail(PS_ERROR_INVALID_ARGUMENT, "num_rows = 0: give at least one key");
     HandleMotion motion;
@@ -309,6 +322,32 @@ PS_API int32_t ps_sim_set_handle_keyframes(ps_sim* sim, int32_t handle, const do
           {row[0], Vec3(row[1], row[2], row[3]), Vec3(row[4], row[5], row[6]), row[7]});
     }
     set_motion(*sim, handle, motion);
+  });
+}
+
+PS_API int32_t ps_sim_set_handle_axes(ps_sim* sim, int32_t handle, uint32_t axes) {
+  return guarded(error_slot(sim), "ps_sim_set_handle_axes", [&] {
+    require_idle(sim);
+    require_handle(*sim, handle);
+    edit_scene(*sim, [&](Scene& scene) { scene.handles[handle].axes = axes; });
+  });
+}
+
+PS_API int32_t ps_sim_get_handle_reaction(const ps_sim* sim, int32_t level, int32_t handle,
+                                          ps_handle_reaction* out) {
+  return guarded(error_slot(sim), "ps_sim_get_handle_reaction", [&] {
+    require_idle(sim);
+    require(out, "out");
+    require_handle(*sim, handle);
+    const std::vector<HandleReaction>& reactions = last_reactions(*sim, level);
+    if (reactions.empty())
+      api_fail(PS_ERROR_WRONG_CALL_ORDER,
+               "level " + std::to_string(level) +
+                   " has no reaction: no solve on it yet, or it is a preview level (its proxy "
+                   "holds the finest handle vertices)");
+    copy3(reactions[handle].force, out->force);
+    copy3(reactions[handle].moment, out->moment);
+    copy3(reactions[handle].point, out->point);
   });
 }
 

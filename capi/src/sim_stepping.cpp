@@ -95,19 +95,10 @@ PS_API int32_t ps_sim_refine(ps_sim* sim) {
 PS_API int32_t ps_sim_settle(ps_sim* sim, int32_t max_solves, int32_t* equilibrium) {
   return guarded(error_slot(sim), "ps_sim_settle", [&] {
     require_idle(sim);
-    if (max_solves < 1)
-      api_fail(PS_ERROR_INVALID_ARGUMENT,
-               "max_solves = " + std::to_string(max_solves) + " must be >= 1");
     ProgressiveSimulation& psq = quasistatic_driver(*sim);
     const BusyGuard busy(*sim);
-    bool reached = false;
-    for (int32_t k = 0; k < max_solves && !reached; ++k) {
-      psq.settle();
-      reached = psq.records()[psq.level()].equilibrium;
-      if (!psq.current().dofs().allFinite())
-        api_fail(PS_ERROR_NUMERICAL, "settling produced non-finite positions");
-      report_progress(*sim, k + 1, max_solves, "settle");
-    }
+    const bool reached = psq.settle_to_equilibrium(
+        max_solves, [&](int done) { report_progress(*sim, done, max_solves, "settle"); });
     if (equilibrium) *equilibrium = reached ? 1 : 0;
   });
 }

@@ -16,6 +16,7 @@
 #include "progressive/progressive_simulation.hpp"
 #include "scene/scene_json.hpp"
 #include "sim/level_simulation.hpp"
+#include "sim/record_json.hpp"
 #include "sim/run_summary.hpp"
 
 namespace fs = std::filesystem;
@@ -114,6 +115,7 @@ nlohmann::json level_rows(const ProgressiveSimulation& psq, const std::vector<in
       row["error_rms"] = error->rms;
       row["error_max"] = error->max;
     }
+    if (!r.reactions.empty()) row["reactions"] = reactions_json(r.reactions);
     rows.push_back(row);
   }
   return rows;

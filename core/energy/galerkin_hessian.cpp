@@ -42,7 +42,7 @@ GalerkinHessian::SparseMatrix GalerkinHessian::product(const Vector& fine_x, boo
                                                        const std::vector<int>& pinned) {
   if (masked_lift_.size() == 0 || pinned != masked_pinned_) {  // M U and (M U)ᵀ, per pinned set
     Eigen::VectorXd mask = Eigen::VectorXd::Ones(lift_.rows());
-    for (int v : pinned) mask.segment<3>(3 * v).setZero();
+    for (int d : pinned) mask[d] = 0.0;
     masked_lift_ = mask.asDiagonal() * lift_;
     masked_lift_transpose_ = masked_lift_.transpose();
     masked_pinned_ = pinned;

@@ -35,8 +35,8 @@ class GalerkinHessian {
   /// Row and column of every entry, in the order values() writes them.
   void pattern(int* rows, int* cols) const;
   /// The entries at the finest state `fine_x` (or those of an earlier state within the refresh
-  /// distance, with the same `project_psd` and `pinned`); finest vertices in `pinned` do not
-  /// depend on the coarse state (their rows and columns of H are left out).
+  /// distance, with the same `project_psd` and `pinned`); finest DOFs in `pinned` (3v + k) do
+  /// not depend on the coarse state (their rows and columns of H are left out).
   void values(const Vector& fine_x, bool project_psd, const std::vector<int>& pinned, double* out);
 
   /// The next values() assembles, whatever the distance moved.
@@ -55,7 +55,7 @@ class GalerkinHessian {
   Problem& finest_;
   SparseMatrix lift_;     // U ⊗ I₃ (3 n_L × 3 n_l)
   SparseMatrix pattern_;  // structure of Uᵀ H U
-  // M U and its transpose (M: 1 on free finest DOFs, 0 on pinned ones) for masked_pinned_.
+  // M U and its transpose (M: 1 on free finest DOFs, 0 on the pinned DOFs masked_pinned_).
   SparseMatrix masked_lift_, masked_lift_transpose_;
   std::vector<int> masked_pinned_;
   double refresh_distance_;

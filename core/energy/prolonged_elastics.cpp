@@ -59,22 +59,22 @@ void ProlongedElastics::prolong(const Vector& x) const {
   states_[0] = as_positions(x);  // same size: no allocation
   for (std::size_t k = 0; k < chain_.size(); ++k)
     chain_[k]->apply(states_[k], k + 1 < chain_.size() ? states_[k + 1] : fine_);
-  for (std::size_t k = 0; k < pinned_.size(); ++k) fine_.row(pinned_[k]) = pinned_positions_.row(k);
+  for (std::size_t k = 0; k < pinned_.size(); ++k)
+    fine_(pinned_[k] / 3, pinned_[k] % 3) = pinned_values_[k];
   fine_dofs_ = as_dofs(fine_);
 }
 
-void ProlongedElastics::pin_finest_vertices(const std::vector<int>& vertices,
-                                            const Positions& positions) {
-  if (positions.rows() != static_cast<Eigen::Index>(vertices.size()))
-    fail(Status::invalid_argument, "prolonged elastics: " + std::to_string(vertices.size()) +
-                                       " pinned vertices but " + std::to_string(positions.rows()) +
-                                       " positions");
-  for (int v : vertices)
-    if (v < 0 || v >= fine_.rows())
+void ProlongedElastics::pin_finest_dofs(const std::vector<int>& dofs, const Vector& values) {
+  if (values.size() != static_cast<Eigen::Index>(dofs.size()))
+    fail(Status::invalid_argument, "prolonged elastics: " + std::to_string(dofs.size()) +
+                                       " pinned DOFs but " + std::to_string(values.size()) +
+                                       " values");
+  for (int d : dofs)
+    if (d < 0 || d >= fine_.size())
       fail(Status::out_of_range,
-           "prolonged elastics: pinned vertex " + std::to_string(v) + " is not a finest vertex");
-  pinned_ = vertices;
-  pinned_positions_ = positions;
+           "prolonged elastics: pinned DOF " + std::to_string(d) + " is not a finest DOF");
+  pinned_ = dofs;
+  pinned_values_ = values;
 }
 
 double ProlongedElastics::value(const Vector& x) const {
@@ -86,7 +86,7 @@ void ProlongedElastics::add_gradient(const Vector& x, Vector& g) const {
   prolong(x);
   finest_->gradient(fine_dofs_, fine_gradient_dofs_);
   gradients_.back() = as_positions(fine_gradient_dofs_);
-  for (int v : pinned_) gradients_.back().row(v).setZero();  // held: independent of x
+  for (int d : pinned_) gradients_.back()(d / 3, d % 3) = 0.0;  // held: independent of x
   // ∇_x Ψ_L(P(x)) = J(x)ᵀ ∇Ψ_L, the exact chain rule through each operator (PSQ eqs. 7, 9).
   for (std::size_t k = chain_.size(); k-- > 0;) {
     gradients_[k].setZero();

@@ -45,10 +45,11 @@ class ProlongedElastics final : public EnergyTerm {
   void hessian_values(const Vector& x, bool project_psd, double* values) const override;
   void refresh_hessian() override;
 
-  /// Holds finest vertices `vertices` at `positions` (one row each) in place of their
-  /// prolonged positions: the finest level's handles (Dirichlet conditions) act exactly, and
-  /// their gradient is not passed back to the level. Call again when the handles move.
-  void pin_finest_vertices(const std::vector<int>& vertices, const Positions& positions);
+  /// Holds finest DOFs `dofs` (indices 3v + k) at `values` in place of their prolonged
+  /// values: the finest level's handles (Dirichlet conditions, some coordinates of a vertex for
+  /// a roller) act exactly, and their gradient is not passed back to the level. Call again when
+  /// the handles move.
+  void pin_finest_dofs(const std::vector<int>& dofs, const Vector& values);
 
   /// Counters of the finest-level terms, named "<term>@finest" (how often Ψ_L was evaluated).
   std::vector<TermStats> finest_term_stats() const;
@@ -64,8 +65,8 @@ class ProlongedElastics final : public EnergyTerm {
   std::vector<std::unique_ptr<EnergyTerm>> level_terms_;
   std::unique_ptr<GalerkinHessian> galerkin_;  // null: the level terms' Hessian
   std::vector<std::size_t> entry_offsets_;     // per level term, into the Hessian entries
-  std::vector<int> pinned_;                    // finest vertices held at pinned_positions_
-  Positions pinned_positions_;
+  std::vector<int> pinned_;                    // finest DOFs held at pinned_values_
+  Vector pinned_values_;
   // Work buffers (sized once).
   mutable std::vector<Positions> states_;     // input of each operator of the chain
   mutable std::vector<Positions> gradients_;  // gradient w.r.t. each of those inputs

@@ -119,13 +119,17 @@ double Problem::value(const Vector& x) {
   return total;
 }
 
-void Problem::gradient(const Vector& x, Vector& g) {
+void Problem::unreduced_gradient(const Vector& x, Vector& g) {
   g.setZero(num_dofs_);
   for (std::size_t t = 0; t < terms_.size(); ++t) {
     ScopedTimer timer(stats_[t].seconds);
     ++stats_[t].gradient_evaluations;
     terms_[t]->add_gradient(x, g);
   }
+}
+
+void Problem::gradient(const Vector& x, Vector& g) {
+  unreduced_gradient(x, g);
   for (int d = 0; d < num_dofs_; ++d)
     if (fixed_[d]) g[d] = 0.0;
 }

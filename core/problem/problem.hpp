@@ -45,6 +45,8 @@ class Problem {
   double value(const Vector& x);
   /// Full gradient ∇E(x) (3|V|) written into g; entries of fixed DOFs are zero.
   void gradient(const Vector& x, Vector& g);
+  /// ∇E(x) (3|V|) with the entries of fixed DOFs too (what their supports must supply).
+  void unreduced_gradient(const Vector& x, Vector& g);
   /// Reduced Hessian (free × free, lower triangle stored), per-element PSD-projected if asked.
   /// Without terms of changing pattern the reference and its pattern stay valid until the next
   /// finalize(); with them (contact) the pattern may change: see pattern_version().

@@ -57,6 +57,7 @@ nlohmann::json dynamic_step_json(int level, const DynamicStepRecord& s) {
   if (s.contact) line["contact"] = contact_json(*s.contact);
   if (s.max_stretch) line["max_stretch"] = *s.max_stretch;
   if (s.wind) line["wind"] = wind_json(*s.wind);
+  if (!s.reactions.empty()) line["reactions"] = reactions_json(s.reactions);
   return line;
 }
 

@@ -127,6 +127,7 @@ void add_dynamic_step(DynamicLevelRecord& record, const StepRecord& step, double
   r.contact = step.contact;
   r.max_stretch = step.max_stretch;
   r.wind = step.wind;
+  r.reactions = step.reactions;
   record.seconds += step.seconds;
   record.newton_iterations += r.newton_iterations;
   record.converged_steps += r.converged;

@@ -35,6 +35,8 @@ struct DynamicStepRecord {
   std::optional<ContactStats> contact;  ///< with contact: this step's counters
   std::optional<double> max_stretch;    ///< with a strain limit: the largest stretch after it
   std::optional<WindRecord> wind;       ///< with wind: the wind and its force after it
+  /// Per handle, what its support applies (StepRecord::reactions; empty on the preview).
+  std::vector<HandleReaction> reactions;
 };
 
 /// One level of a progressive animation: its size, work and per-step records.

@@ -132,6 +132,7 @@ void ProgressiveSimulation::record(const StepRecord& step, bool new_step) {
   r.obstacle_vertices = obstacle_vertex_count();
   r.reduced_offsets = step.reduced_offsets;
   r.raised_limits = step.raised_limits;
+  r.reactions = step.reactions;
 }
 
 StepRecord ProgressiveSimulation::step() {
@@ -146,9 +147,19 @@ StepRecord ProgressiveSimulation::settle() {
   return step;
 }
 
-bool ProgressiveSimulation::settle_to_equilibrium(int max_solves) {
-  for (int k = 0; k < max_solves; ++k)
-    if (settle(), records_[level_].equilibrium) return true;
+bool ProgressiveSimulation::settle_to_equilibrium(int max_solves,
+                                                  const std::function<void(int)>& after_solve) {
+  if (max_solves < 1)
+    fail(Status::invalid_argument, "max_solves = " + std::to_string(max_solves) + " must be >= 1");
+  for (int k = 0; k < max_solves; ++k) {
+    settle();
+    if (!sim_->dofs().allFinite())
+      fail(Status::numerical_failure, "settling level " + std::to_string(level_) +
+                                          " produced non-finite positions (solve " +
+                                          std::to_string(k + 1) + ")");
+    if (after_solve) after_solve(k + 1);
+    if (records_[level_].equilibrium) return true;
+  }
   return false;
 }
 

@@ -2,6 +2,7 @@
 /// @file Progressive Shell Quasistatics (PSQ, Zhang et al. 2023, §3 and Algorithm 1): a coarse
 /// preview of a scene's equilibria on level l with the proxy energy, then refinement level by
 /// level to the finest mesh, solved there to convergence with the full energy.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -47,6 +48,9 @@ struct LevelRecord {
   /// its place (after refinement, progressive obstacles may take several solves).
   bool equilibrium = false;
   Positions positions;  ///< the state when the level was left (empty while current)
+  /// Per handle, what its support applied after the last solve (StepRecord::reactions; empty
+  /// before any solve and on preview levels).
+  std::vector<HandleReaction> reactions;
 };
 
 /// The PSQ driver. Level 0 is the coarsest; finest() is the scene's mesh. Quasistatic scenes
@@ -76,8 +80,10 @@ class ProgressiveSimulation {
   StepRecord settle();
   /// Settles until the current level is at equilibrium (PSQ Algorithm 1: a solve that needs no
   /// Newton step, StepRecord::equilibrium) or `max_solves` solves were made; returns whether
-  /// equilibrium was reached.
-  bool settle_to_equilibrium(int max_solves);
+  /// equilibrium was reached. `after_solve` (nullable) is told how many solves are done after
+  /// each, and may throw (a caller's cancel). Throws Error(invalid_argument) for max_solves < 1,
+  /// Error(numerical_failure) if a solve left non-finite positions.
+  bool settle_to_equilibrium(int max_solves, const std::function<void(int)>& after_solve = {});
   /// Refines the current level l into l+1 toward the hierarchy's P^l_{l+1}(x_l) (PSQ eq. 7) and
   /// continues there at the same scene time. Without contact the level starts at P^l_{l+1}(x_l).
   /// Progressive obstacles (PSQ §4.6) are then refined the same way against the refined shell,

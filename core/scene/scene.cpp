@@ -62,6 +62,10 @@ void validate_contact(const Scene& scene) {
   if (!contact && (!scene.obstacles.empty() || scene.ground.enabled))
     fail(Status::invalid_scene,
          "the scene has obstacles or a ground but does not enable the 'contact' effect");
+  if (!contact && scene.effects.has(Effect::friction))
+    fail(Status::invalid_scene,
+         "the 'friction' effect acts on contacts but the scene does not enable the 'contact' "
+         "effect: enable 'contact' or drop 'friction'");
   for (std::size_t k = 0; k < scene.obstacles.size(); ++k) {
     const Obstacle& o = scene.obstacles[k];
     const std::string where = "obstacles[" + std::to_string(k) + "]";
@@ -88,6 +92,9 @@ void validate_handle(const Scene& scene, std::size_t h) {
       fail(Status::invalid_scene, where + ": vertex " + std::to_string(v) +
                                       " is out of range [0, " + std::to_string(n) + ")");
   validate_motion(handle.motion, where + ".motion");
+  if (handle.axes == 0 || (handle.axes & ~unsigned{handle_axes_all}) != 0)
+    fail(Status::invalid_scene, where + ": axes " + std::to_string(handle.axes) +
+                                    " must be a non-empty set of x (1), y (2), z (4)");
 }
 
 void validate_progressive(const ProgressiveSettings& p) {

@@ -102,11 +102,22 @@ struct WindSettings {
   Vec3 at(double t) const;
 };
 
+/// Bits of Handle::axes: the coordinates a handle prescribes.
+enum HandleAxis : unsigned {
+  handle_axis_x = 1u,
+  handle_axis_y = 2u,
+  handle_axis_z = 4u,
+  handle_axes_all = 7u,  ///< a clamp
+};
+
 /// Vertices of one body held on a scripted trajectory (Dirichlet boundary condition).
 struct Handle {
   int body = 0;               ///< index into Scene::bodies
   std::vector<int> vertices;  ///< vertex indices within the body's mesh
   HandleMotion motion;
+  /// The world coordinates the handle prescribes (HandleAxis bits, at least one); the others
+  /// are free: a roller or a symmetry plane. The script moves only the prescribed coordinates.
+  unsigned axes = handle_axes_all;
 };
 
 /// How the proxy energy of a coarse level reaches the finest mesh (PSQ §4.3).

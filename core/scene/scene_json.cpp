@@ -264,8 +264,23 @@ HandleMotion motion(const Json& j, const std::string& where) {
   return m;
 }
 
+/// "axes": the letters of the coordinates a handle prescribes, e.g. "xz" (HandleAxis bits).
+unsigned handle_axes(const Json& j, const std::string& where) {
+  if (!j.is_string()) scene_error(where, "must be a string of axes such as \"xz\"");
+  const std::string letters = j.get<std::string>();
+  unsigned axes = 0;
+  for (char c : letters) {
+    const std::size_t k = std::string("xyz").find(c);
+    if (k == std::string::npos || (axes & (1u << k)) != 0)
+      scene_error(where, "'" + letters + "' must list each of x, y, z at most once");
+    axes |= 1u << k;
+  }
+  if (axes == 0) scene_error(where, "holds no axis (give e.g. \"xyz\" or \"y\")");
+  return axes;
+}
+
 Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string& where) {
-  expect_keys(j, where, {"body", "vertices", "box", "motion"});
+  expect_keys(j, where, {"body", "vertices", "box", "motion", "axes"});
   Handle h;
   h.body = body_index(require(j, "body", where), bodies, where + ".body");
   if (h.body < 0 || h.body >= static_cast<int>(bodies.size()))
@@ -284,6 +299,7 @@ Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string&
   if (h.vertices.empty())
     scene_error(where, "selects no vertices (give 'vertices' or a 'box' that contains some)");
   if (j.contains("motion")) h.motion = motion(j.at("motion"), where + ".motion");
+  if (j.contains("axes")) h.axes = handle_axes(j.at("axes"), where + ".axes");
   return h;
 }
 

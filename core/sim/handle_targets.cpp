@@ -24,30 +24,31 @@ HandleTargets::HandleTargets(const Scene& scene, const Positions& rest,
       fail(Status::invalid_argument, "vertex " + std::to_string(v) + " belongs to handle " +
                                          std::to_string(h) + " but the scene has " +
                                          std::to_string(motions_.size()) + " handles");
-    vertices_.push_back(v);
-    handle_of_.push_back(h);
-    rest_.push_back(rest.row(v).transpose());
+    for (int k = 0; k < 3; ++k) {
+      if ((scene.handles[h].axes & (1u << k)) == 0) continue;
+      dofs_.push_back(3 * v + k);
+      dof_handle_.push_back(h);
+      rest_.push_back(rest.row(v).transpose());
+    }
   }
 }
 
 std::vector<bool> HandleTargets::fixed_dofs(int num_vertices) const {
   std::vector<bool> fixed(3 * static_cast<std::size_t>(num_vertices), false);
-  for (int v : vertices_)
-    for (int k = 0; k < 3; ++k) fixed[3 * v + k] = true;
+  for (int d : dofs_) fixed[d] = true;
   return fixed;
 }
 
-Positions HandleTargets::targets(double t) const {
-  Positions out(vertices_.size(), 3);
-  for (std::size_t i = 0; i < vertices_.size(); ++i)
-    out.row(i) = motions_[handle_of_[i]].position(rest_[i], t).transpose();
+Vector HandleTargets::dof_targets(double t) const {
+  Vector out(dofs_.size());
+  for (std::size_t i = 0; i < dofs_.size(); ++i)
+    out[i] = motions_[dof_handle_[i]].position(rest_[i], t)[dofs_[i] % 3];
   return out;
 }
 
 void HandleTargets::apply(double t, Vector& x) const {
-  for (std::size_t i = 0; i < vertices_.size(); ++i) {
-    x.segment<3>(3 * vertices_[i]) = motions_[handle_of_[i]].position(rest_[i], t);
-  }
+  for (std::size_t i = 0; i < dofs_.size(); ++i)
+    x[dofs_[i]] = motions_[dof_handle_[i]].position(rest_[i], t)[dofs_[i] % 3];
 }
 
 }  // namespace progsim

@@ -13,6 +13,7 @@
 #include "energy/wind_force.hpp"
 #include "mesh/intersection_check.hpp"
 #include "sim/contact_setup.hpp"
+#include "sim/handle_reactions.hpp"
 #include "sim/handle_step_bound.hpp"
 #include "sim/obstacle_script.hpp"
 #include "sim/shell_elastics.hpp"
@@ -158,7 +159,7 @@ void LevelSimulation::build_problem() {
 }
 
 void LevelSimulation::pin_finest_handles(double t) {
-  if (proxy_) proxy_->pin_finest_vertices(finest_handles_.vertices(), finest_handles_.targets(t));
+  if (proxy_) proxy_->pin_finest_dofs(finest_handles_.dofs(), finest_handles_.dof_targets(t));
 }
 
 void LevelSimulation::add_elastics(Problem& problem,
@@ -407,6 +408,9 @@ StepRecord LevelSimulation::solve_at(double t, bool new_step, const StepTargets&
   record.change_rms = (x_ - x_previous_).norm() / std::sqrt(x_.size() / 3.0);
   record.equilibrium =
       !dynamic && record.script_reached >= 1.0 && record.raised_limits == 0 && at_rest(record);
+  if (dynamic || (!handles_.empty() && !proxy_)) problem_->unreduced_gradient(x_, gradient_);
+  if (!handles_.empty() && !proxy_)  // a preview's proxy passes no force of a pinned finest DOF
+    record.reactions = handle_reactions(handles_, x_, gradient_);
   if (dynamic) {
     v_ = (x_ - x_previous_) / h;  // vᵗ⁺¹ = (xᵗ⁺¹ − xᵗ)/h
     record.motion = motion(older, x_previous_, inertia_->target());
@@ -430,7 +434,7 @@ Vec3 LevelSimulation::center_of_mass() const {
 }
 
 MotionRecord LevelSimulation::motion(const Vector& older, const Vector& before,
-                                     const Vector& predicted) {
+                                     const Vector& predicted) const {
   const Eigen::VectorXd& m = model_.vertex_masses;
   const double h = scene_.time_step;
   MotionRecord out;
@@ -439,8 +443,6 @@ MotionRecord LevelSimulation::motion(const Vector& older, const Vector& before,
   out.center_of_mass = center_of_mass();
   // VPD App. C eqs. 17–18 (PD++): the midpoint estimate from implicit Euler as a boundary value
   // problem, with h²M⁻¹f(xᵗ⁺¹) = xᵗ⁺¹ − x̂ − h²M⁻¹∇E read from the solve.
-  gradient_.resize(x_.size());
-  problem_->gradient(x_, gradient_);
   double error = 0.0, residual = 0.0, free_mass = 0.0;
   for (Eigen::Index d = 0; d < x_.size(); ++d) {
     if (problem_->is_fixed(static_cast<int>(d))) continue;

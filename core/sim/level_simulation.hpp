@@ -139,8 +139,9 @@ class LevelSimulation {
   /// quasistatic preview, on the level's prolonged masses for a dynamic one.
   void add_proxy_elastics(Problem& problem,
                           std::vector<std::pair<Pressure*, int>>& pressures) const;
-  /// The motion after a dynamic step from `before` (xᵗ) and `older` (xᵗ⁻¹), `predicted` its x̂.
-  MotionRecord motion(const Vector& older, const Vector& before, const Vector& predicted);
+  /// The motion after a dynamic step from `before` (xᵗ) and `older` (xᵗ⁻¹), `predicted` its x̂,
+  /// with gradient_ the objective's gradient at the new state.
+  MotionRecord motion(const Vector& older, const Vector& before, const Vector& predicted) const;
   /// Throws Error(invalid_argument) unless `targets` fit this level.
   void check_targets(const StepTargets& targets) const;
   /// Holds the finest level's handle vertices at their targets at time t in the proxy.

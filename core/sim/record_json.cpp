@@ -24,6 +24,15 @@ nlohmann::json motion_json(const MotionRecord& m) {
           {"continuity", m.continuity}};
 }
 
+nlohmann::json reactions_json(const std::vector<HandleReaction>& reactions) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const HandleReaction& r : reactions)
+    out.push_back({{"force", {r.force.x(), r.force.y(), r.force.z()}},
+                   {"moment", {r.moment.x(), r.moment.y(), r.moment.z()}},
+                   {"point", {r.point.x(), r.point.y(), r.point.z()}}});
+  return out;
+}
+
 nlohmann::json wind_json(const WindRecord& w) {
   return {{"velocity", {w.velocity.x(), w.velocity.y(), w.velocity.z()}},
           {"force", {w.force.x(), w.force.y(), w.force.z()}}};

@@ -14,6 +14,10 @@ nlohmann::json contact_json(const ContactStats& contact);
 /// continuity.
 nlohmann::json motion_json(const MotionRecord& motion);
 
+/// Per handle, its reaction: force [x, y, z] (N), moment [x, y, z] (N·m) about point [x, y, z]
+/// (m).
+nlohmann::json reactions_json(const std::vector<HandleReaction>& reactions);
+
 /// A step's wind: its velocity [x, y, z] (m/s) and its force on the shell [x, y, z] (N).
 nlohmann::json wind_json(const WindRecord& wind);
 

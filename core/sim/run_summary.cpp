@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "sim/record_json.hpp"
+
 namespace progsim {
 
 void RunSummary::add(const StepRecord& r) {
@@ -17,6 +19,7 @@ void RunSummary::add(const StepRecord& r) {
   phases_.solve += r.newton.timings.solve;
   phases_.line_search += r.newton.timings.line_search;
   ++stops_[stop_name(r.newton.stop)];
+  final_reactions_ = r.reactions;
 }
 
 std::string RunSummary::to_json(const LevelSimulation& sim) const {
@@ -27,26 +30,26 @@ std::string RunSummary::to_json(const LevelSimulation& sim) const {
                      {"gradient_evaluations", t.gradient_evaluations},
                      {"hessian_evaluations", t.hessian_evaluations},
                      {"seconds", t.seconds}});
-  const nlohmann::json j = {
-      {"scene", sim.scene().name},
-      {"mode", sim.scene().mode == StepMode::dynamic ? "dynamic" : "quasistatic"},
-      {"vertices", sim.model().rest.num_vertices()},
-      {"faces", sim.model().rest.num_faces()},
-      {"effects", effect_names(sim.scene().effects)},
-      {"steps", steps_},
-      {"simulated_time", sim.time()},
-      {"wall_seconds", seconds_},
-      {"newton_iterations", iterations_},
-      {"max_newton_iterations_in_a_step", max_iterations_},
-      {"stops", stops_},
-      {"final_energy", final_energy_},
-      {"final_gradient_norm", final_gradient_norm_},
-      {"phase_seconds",
-       {{"assembly", phases_.assembly},
-        {"factorization", phases_.factorization},
-        {"solve", phases_.solve},
-        {"line_search", phases_.line_search}}},
-      {"terms", terms}};
+  nlohmann::json j = {{"scene", sim.scene().name},
+                      {"mode", sim.scene().mode == StepMode::dynamic ? "dynamic" : "quasistatic"},
+                      {"vertices", sim.model().rest.num_vertices()},
+                      {"faces", sim.model().rest.num_faces()},
+                      {"effects", effect_names(sim.scene().effects)},
+                      {"steps", steps_},
+                      {"simulated_time", sim.time()},
+                      {"wall_seconds", seconds_},
+                      {"newton_iterations", iterations_},
+                      {"max_newton_iterations_in_a_step", max_iterations_},
+                      {"stops", stops_},
+                      {"final_energy", final_energy_},
+                      {"final_gradient_norm", final_gradient_norm_},
+                      {"phase_seconds",
+                       {{"assembly", phases_.assembly},
+                        {"factorization", phases_.factorization},
+                        {"solve", phases_.solve},
+                        {"line_search", phases_.line_search}}},
+                      {"terms", terms}};
+  if (!final_reactions_.empty()) j["final_reactions"] = reactions_json(final_reactions_);
   return j.dump(2);
 }
 
@@ -74,6 +77,12 @@ std::string RunSummary::to_text(const LevelSimulation& sim) const {
                   static_cast<long long>(t.value_evaluations),
                   static_cast<long long>(t.gradient_evaluations),
                   static_cast<long long>(t.hessian_evaluations), t.seconds);
+    out += line;
+  }
+  for (std::size_t h = 0; h < final_reactions_.size(); ++h) {
+    const Vec3& f = final_reactions_[h].force;
+    std::snprintf(line, sizeof line, "handle %zu reaction: force (%.6g, %.6g, %.6g) N\n", h, f.x(),
+                  f.y(), f.z());
     out += line;
   }
   return out;

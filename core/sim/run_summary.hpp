@@ -32,6 +32,7 @@ class RunSummary {
   double final_gradient_norm_ = 0.0;
   NewtonTimings phases_;
   std::map<std::string, int> stops_;
+  std::vector<HandleReaction> final_reactions_;  // the last step's, per handle
 };
 
 }  // namespace progsim

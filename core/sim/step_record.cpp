@@ -39,6 +39,7 @@ std::string to_json_line(const StepRecord& r) {
   if (r.max_stretch) line["max_stretch"] = *r.max_stretch;
   if (r.wind) line["wind"] = wind_json(*r.wind);
   if (r.motion) line["motion"] = motion_json(*r.motion);
+  if (!r.reactions.empty()) line["reactions"] = reactions_json(r.reactions);
   return line.dump();
 }
 

@@ -33,6 +33,14 @@ struct WindRecord {
   Vec3 force = Vec3::Zero();     ///< drag and lift on the whole shell after the step (N)
 };
 
+/// What one handle's support supplies after a step: R = ∂E/∂x at its prescribed DOFs (E the
+/// step's objective, inertia included in dynamic steps: R = M a − f), summed over its vertices.
+struct HandleReaction {
+  Vec3 force = Vec3::Zero();   ///< Σ R_i (N), zero along the coordinates it leaves free
+  Vec3 moment = Vec3::Zero();  ///< Σ (x_i − point) × R_i (N·m)
+  Vec3 point = Vec3::Zero();   ///< centroid of the handle's vertices on the level (m)
+};
+
 /// Report of one step: solver outcome, per-term counters for this step only, wall time.
 struct StepRecord {
   int step = 0;                  ///< 1-based index of the step just taken
@@ -70,6 +78,9 @@ struct StepRecord {
   int raised_limits = 0;
   /// Dynamic scenes: the motion after the step.
   std::optional<MotionRecord> motion;
+  /// Per scene handle, the force and moment its support applies; empty without handles and on
+  /// preview levels (the proxy holds the finest handle vertices and passes no force back).
+  std::vector<HandleReaction> reactions;
 };
 
 /// One line of JSON describing the record (for logs: `steps.jsonl`).

@@ -7,9 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "progsim.h"
-
 #include "check.h"
+#include "progsim.h"
 
 static char source_dir[4096];
 
@@ -116,6 +115,50 @@ static void test_full_cycle(void) {
   double corner[3 * 441];
   CHECK(ps_sim_get_positions(sim, 0, corner, 3 * 441, &count) == PS_OK);
   CHECK(fabs(corner[3 * 420] - 0.1) < 1e-12); /* the dragged handle moved */
+  ps_sim_destroy(sim);
+  ps_hierarchy_destroy(h);
+}
+
+/* A square cloth hanging in its plane from its top edge (y = 1): its support carries the
+ * weight ρ h A g = 200 kg/m³ × 1 mm × 1 m² × 9.81 m/s². */
+static void test_handle_reaction(void) {
+  ps_hierarchy* h = NULL;
+  CHECK(ps_hierarchy_create_from_file(NULL, path_in_source("scenes/meshes/square_cloth.obj"), &h) ==
+        PS_OK);
+  if (!h) return;
+  ps_sim_def def;
+  ps_sim_def_init(&def);
+  int32_t top[21];
+  for (int32_t i = 0; i < 21; ++i) top[i] = 420 + i;
+  def.pinned_vertices = top;
+  def.num_pinned_vertices = 21;
+  def.mode = PS_MODE_QUASISTATIC;
+  def.solver_newton_tolerance = 1e-9;
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
+  if (!sim) return;
+  ps_handle_reaction r;
+  CHECK_ERROR(ps_sim_get_handle_reaction(sim, 0, 0, &r), PS_ERROR_WRONG_CALL_ORDER,
+              ps_sim_last_error(sim), "no reaction");
+  CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
+  CHECK(ps_sim_get_handle_reaction(sim, 0, 0, &r) == PS_OK);
+  const double weight = 200.0 * 1e-3 * 1.0 * 9.81;
+  CHECK(fabs(r.force[1] - weight) < 1e-6 * weight);
+  CHECK(fabs(r.force[0]) < 1e-6 * weight && fabs(r.force[2]) < 1e-6 * weight);
+  CHECK(fabs(r.point[1] - 1.0) < 1e-3 && fabs(r.point[0] - 0.5) < 1e-9);
+  CHECK_ERROR(ps_sim_get_handle_reaction(sim, 0, 1, &r), PS_ERROR_OUT_OF_RANGE,
+              ps_sim_last_error(sim), "handle 1");
+  CHECK_ERROR(ps_sim_get_handle_reaction(sim, 2, 0, &r), PS_ERROR_OUT_OF_RANGE,
+              ps_sim_last_error(sim), "level 2");
+  CHECK_ERROR(ps_sim_get_handle_reaction(sim, 0, 0, NULL), PS_ERROR_NULL_ARGUMENT,
+              ps_sim_last_error(sim), "out");
+  CHECK_ERROR(ps_sim_set_handle_axes(sim, 0, 0), PS_ERROR_INVALID_SCENE, ps_sim_last_error(sim),
+              "axes");
+  CHECK_ERROR(ps_sim_set_handle_axes(sim, 0, 8), PS_ERROR_INVALID_SCENE, ps_sim_last_error(sim),
+              "axes");
+  CHECK_ERROR(ps_sim_set_handle_axes(sim, 3, PS_AXIS_Y), PS_ERROR_OUT_OF_RANGE,
+              ps_sim_last_error(sim), "handle 3");
+  CHECK(ps_sim_set_handle_axes(sim, 0, PS_AXIS_ALL) == PS_OK);
   ps_sim_destroy(sim);
   ps_hierarchy_destroy(h);
 }
@@ -475,16 +518,16 @@ static void test_crossing_input(void) {
   hdef.coarse_vertex_counts = coarse;
   hdef.num_coarse_levels = 2;
   ps_hierarchy* h = NULL;
-  CHECK(ps_hierarchy_create_from_file(&hdef, path_in_source("tests/data/crossing_flap.obj"),
-                                      &h) == PS_OK);
+  CHECK(ps_hierarchy_create_from_file(&hdef, path_in_source("tests/data/crossing_flap.obj"), &h) ==
+        PS_OK);
   if (!h) return;
   /* The hierarchy's contact offset: checked, and kept by the levels it builds. */
   CHECK(hdef.contact_offset == 0.0);
   hdef.contact_offset = -1e-3;
   ps_hierarchy* bad = NULL;
-  CHECK_ERROR(ps_hierarchy_create_from_file(
-                  &hdef, path_in_source("tests/data/crossing_flap.obj"), &bad),
-              PS_ERROR_INVALID_ARGUMENT, ps_last_error(), "contact_offset = -0.001");
+  CHECK_ERROR(
+      ps_hierarchy_create_from_file(&hdef, path_in_source("tests/data/crossing_flap.obj"), &bad),
+      PS_ERROR_INVALID_ARGUMENT, ps_last_error(), "contact_offset = -0.001");
   CHECK(bad == NULL);
   hdef.contact_offset = 2.5e-4;
   CHECK(ps_hierarchy_create_from_file(&hdef, path_in_source("tests/data/crossing_flap.obj"),
@@ -785,6 +828,7 @@ int main(int argc, char** argv) {
   snprintf(source_dir, sizeof source_dir, "%s", argv[1]);
   test_version();
   test_full_cycle();
+  test_handle_reaction();
   test_misuse();
   test_parameter_listing_mode_and_lifetimes();
   test_scene_file();

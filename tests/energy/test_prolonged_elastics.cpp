@@ -77,6 +77,24 @@ TEST(ProlongedElastics, GradientMatchesFiniteDifferencesOnACurvedShell) {
   }
 }
 
+TEST(ProlongedElastics, GradientMatchesFiniteDifferencesWithARollerPinnedCoordinate) {
+  // A roller holds one coordinate of a finest vertex: that coordinate stops depending on x,
+  // the other two stay prolonged.
+  const ProxyCase c(dome(12), 40);
+  const int vertex = 7;
+  c.proxy->pin_finest_dofs({3 * vertex + 2}, Vector::Constant(1, 0.05));
+  const Vector x = perturbed(c.coarse().vertices, 0.03, 3);
+  const Vector analytic = analytic_gradient(*c.proxy, x);
+  const Vector numeric = finite_difference_gradient(*c.proxy, x, 1e-6);
+  EXPECT_LT(relative_error(analytic, numeric, 1e-3), 1e-5);
+  EXPECT_EQ(c.proxy->last_prolonged()(vertex, 2), 0.05);
+  const Positions free_prolonged = c.proxy->last_prolonged();
+  c.proxy->pin_finest_dofs({}, Vector());
+  c.proxy->value(x);
+  EXPECT_NE(c.proxy->last_prolonged()(vertex, 2), 0.05);
+  EXPECT_EQ(c.proxy->last_prolonged().row(vertex).head<2>(), free_prolonged.row(vertex).head<2>());
+}
+
 TEST(ProlongedElastics, ValueAtRestIsTheFinestValueAtRest) {
   const TriangleMesh mesh = dome(12);
   const ProxyCase c(mesh, 40);
@@ -129,14 +147,14 @@ TEST(ProlongedElastics, GalerkinHessianIsTheFinestHessianProjectedByU) {
   const MeshHierarchy& h = dome_chain.hierarchy;
   const auto& chain = dome_chain.chain;
   ProlongedElastics proxy(chain, shell_terms(mesh, true), mesh.vertices);
-  const std::vector<int> pinned = {5};
-  proxy.pin_finest_vertices(pinned, mesh.vertices.row(5));
+  proxy.pin_finest_dofs({15, 16, 17}, mesh.vertices.row(5).transpose());
   const Vector x = perturbed(h.levels[0].rest.vertices, 0.02, 6);
   const Eigen::MatrixXd u =
       Eigen::MatrixXd(chain[1]->intrinsic()) * Eigen::MatrixXd(chain[0]->intrinsic());
   Eigen::MatrixXd lift = Eigen::MatrixXd::Zero(3 * u.rows(), 3 * u.cols());
   for (int i = 0; i < u.rows(); ++i)
     for (int j = 0; j < u.cols(); ++j) lift.block<3, 3>(3 * i, 3 * j) = u(i, j) * Mat3::Identity();
+  const Eigen::MatrixXd full_lift = lift;
   lift.middleRows<3>(15).setZero();  // vertex 5 is pinned
   proxy.value(x);
   const Vector fine = as_dofs(proxy.last_prolonged());
@@ -145,6 +163,18 @@ TEST(ProlongedElastics, GalerkinHessianIsTheFinestHessianProjectedByU) {
     fine_hessian += assembled_hessian(*term, fine, true);
   const Eigen::MatrixXd expected = lift.transpose() * fine_hessian * lift;
   EXPECT_LT(relative_error(assembled_hessian(proxy, x, true), expected, 1e-6), 1e-10);
+
+  proxy.pin_finest_dofs({16}, Vector::Constant(1, mesh.vertices(5, 1)));  // a roller: y only
+  lift = full_lift;
+  lift.row(16).setZero();
+  proxy.value(x);
+  const Vector rolled = as_dofs(proxy.last_prolonged());
+  Eigen::MatrixXd rolled_hessian = Eigen::MatrixXd::Zero(rolled.size(), rolled.size());
+  for (const auto& term : shell_terms(mesh, true))
+    rolled_hessian += assembled_hessian(*term, rolled, true);
+  EXPECT_LT(relative_error(assembled_hessian(proxy, x, true),
+                           lift.transpose() * rolled_hessian * lift, 1e-6),
+            1e-10);
 }
 
 TEST(ProlongedElastics, GalerkinHessianIsReassembledOnlyBeyondTheRefreshDistance) {
@@ -183,7 +213,7 @@ TEST(ProlongedElastics, GalerkinHessianIsReassembledOnlyBeyondTheRefreshDistance
 
   assembled_hessian(lazy, rotated, false);  // another projection
   EXPECT_EQ(assemblies(), 3);
-  lazy.pin_finest_vertices({5}, mesh.vertices.row(5));  // another pinned set
+  lazy.pin_finest_dofs({15, 16, 17}, mesh.vertices.row(5).transpose());  // another pinned set
   assembled_hessian(lazy, rotated, false);
   EXPECT_EQ(assemblies(), 4);
   Vector broken = rotated;

@@ -6,6 +6,7 @@
 
 #include "mesh/mesh_generators.hpp"
 #include "sim/level_simulation.hpp"
+#include "support/expect_error.hpp"
 
 using namespace progsim;
 
@@ -35,6 +36,13 @@ TEST(Effects, OnlyEnabledEffectsHaveTerms) {
       {Effect::membrane, Effect::bending, Effect::gravity, Effect::pressure}, StepMode::dynamic));
   EXPECT_EQ(term_names(all),
             (std::vector<std::string>{"inertia", "membrane", "bending", "gravity", "pressure"}));
+}
+
+TEST(Effects, FrictionWithoutContactIsRefusedNamingBoth) {
+  // Friction acts on contacts: asked for alone it would be dropped without a word.
+  const Scene scene = scene_with({Effect::membrane, Effect::friction}, StepMode::dynamic);
+  test_support::expect_error([&] { LevelSimulation sim(scene); }, Status::invalid_scene,
+                             {"'friction'", "'contact'"});
 }
 
 TEST(Effects, CountersShowWhereTimeWent) {

@@ -257,6 +257,27 @@ STEP_STATS_DTYPE: np.dtype = _step_stats_dtype()
 
 
 @dataclass(frozen=True)
+class HandleReaction:
+    """What a handle's support applies to the shell (``ps_handle_reaction``)."""
+
+    force: np.ndarray  #: float64 (3,), N; 0 along the coordinates the handle leaves free
+    moment: np.ndarray  #: float64 (3,), N·m about ``point``
+    point: np.ndarray  #: float64 (3,), m, the centroid of the handle's vertices
+
+
+def _handle_axes(axes: str) -> int:
+    """``ps_axis`` bits of a string of distinct letters from ``"xyz"``."""
+    if not isinstance(axes, str) or not axes or len(set(axes)) != len(axes):
+        raise InvalidArgumentError(f"axes must be distinct letters from 'xyz', got {axes!r}")
+    bits = 0
+    for letter in axes:
+        if letter not in "xyz":
+            raise InvalidArgumentError(f"axes must be distinct letters from 'xyz', got {axes!r}")
+        bits |= 1 << "xyz".index(letter)
+    return bits
+
+
+@dataclass(frozen=True)
 class Frame:
     """One frame of a level of a progressive animation (see :meth:`Simulation.frames`)."""
 
@@ -809,6 +830,44 @@ class Simulation(NativeObject):
             ffi.from_buffer("double[]", rows),
             rows.shape[0],
             _choice(INTERPOLATIONS, interpolation, "interpolation"),
+        )
+
+    def set_handle_axes(self, handle: int, axes: str) -> None:
+        """Makes handle ``handle`` prescribe only the coordinates in ``axes`` from the next
+        step on (scene key ``handles[i].axes``); its vertices move freely along the others.
+
+        Args:
+            handle: handle index, ``0 <= handle < num_handles``.
+            axes: distinct letters from ``"xyz"``: ``"xyz"`` a clamp (the default), ``"z"`` a
+                roller held in height, free to slide in x and y.
+
+        Raises:
+            OutOfRangeError: no such handle.
+            InvalidArgumentError: ``axes`` is empty or has letters other than x, y, z.
+        """
+        self._call(lib.ps_sim_set_handle_axes, int32_value(handle, "handle"), _handle_axes(axes))
+
+    def handle_reaction(self, handle: int, level: Optional[int] = None) -> HandleReaction:
+        """The force and moment handle ``handle``'s support applied after the last solve on
+        ``level`` (default: the current one): ∂E/∂x at its prescribed coordinates, which in a
+        quasistatic step balances the loads.
+
+        Raises:
+            OutOfRangeError: no such level or handle.
+            WrongCallOrderError: no solve on the level yet, or it is a preview level (its proxy
+                holds the finest handle vertices and reports no reaction).
+        """
+        out = ffi.new("ps_handle_reaction*")
+        self._call(
+            lib.ps_sim_get_handle_reaction,
+            self._level(level),
+            int32_value(handle, "handle"),
+            out,
+        )
+        return HandleReaction(
+            force=np.array(list(out.force), dtype=np.float64),
+            moment=np.array(list(out.moment), dtype=np.float64),
+            point=np.array(list(out.point), dtype=np.float64),
         )
 
     # -- stepping ------------------------------------------------------------------------------

@@ -515,6 +515,55 @@ impl Interpolation {
     }
 }
 
+/// The world coordinates a handle prescribes (the C `ps_axis` bits); the others are free: a
+/// roller or a symmetry plane. Scene key `handles[i].axes`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Axes {
+    /// Holds x.
+    pub x: bool,
+    /// Holds y.
+    pub y: bool,
+    /// Holds z.
+    pub z: bool,
+}
+
+impl Axes {
+    /// All three coordinates: a clamp (every handle's default).
+    pub const ALL: Axes = Axes { x: true, y: true, z: true };
+
+    /// The C `ps_axis` bits.
+    pub fn bits(self) -> u32 {
+        let mut bits = 0;
+        if self.x {
+            bits |= sys::PS_AXIS_X;
+        }
+        if self.y {
+            bits |= sys::PS_AXIS_Y;
+        }
+        if self.z {
+            bits |= sys::PS_AXIS_Z;
+        }
+        bits
+    }
+}
+
+/// What a handle's support applies to the shell after a solve (`ps_handle_reaction`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HandleReaction {
+    /// N, summed over the handle's vertices; 0 along the coordinates it leaves free.
+    pub force: [f64; 3],
+    /// N·m, about [`point`](Self::point).
+    pub moment: [f64; 3],
+    /// m, the centroid of the handle's vertices.
+    pub point: [f64; 3],
+}
+
+impl From<sys::ps_handle_reaction> for HandleReaction {
+    fn from(raw: sys::ps_handle_reaction) -> HandleReaction {
+        HandleReaction { force: raw.force, moment: raw.moment, point: raw.point }
+    }
+}
+
 /// Statistics of one level, accumulated over every step taken at it. Levels not visited
 /// yet report zeros.
 #[derive(Clone, Copy, Debug, PartialEq)]

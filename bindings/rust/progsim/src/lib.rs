@@ -62,8 +62,8 @@ use progsim_sys as sys;
 pub use accuracy::{Accuracy, AccuracyDef, AccuracyRow, Method};
 pub use animation::{DynamicLevelStats, Frame, Prediction, SimulationKind, StepStats};
 pub use def::{
-    Effect, Effects, HandleMotion, HierarchyDef, Interpolation, Keyframe, LevelStats, Mode,
-    RefinementStats, SimulationDef, StrainCorrectionStats,
+    Axes, Effect, Effects, HandleMotion, HandleReaction, HierarchyDef, Interpolation, Keyframe,
+    LevelStats, Mode, RefinementStats, SimulationDef, StrainCorrectionStats,
 };
 pub use error::{Error, Result, Status};
 pub use hierarchy::Hierarchy;
@@ -164,6 +164,11 @@ pub(crate) fn c_path(path: &Path) -> Result<CString> {
 }
 
 /// A level number as the C `int32_t`, or [`Status::OutOfRange`].
+pub(crate) fn c_handle(handle: usize) -> Result<i32> {
+    i32::try_from(handle)
+        .map_err(|_| Error::new(Status::OutOfRange, format!("handle {handle} does not exist")))
+}
+
 pub(crate) fn c_level(level: usize) -> Result<i32> {
     i32::try_from(level)
         .map_err(|_| Error::new(Status::OutOfRange, format!("level {level} does not exist")))

@@ -13,9 +13,9 @@ use progsim_sys as sys;
 
 use crate::error::{check, check_thread};
 use crate::{
-    c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
-    CallbackScope, Effect, Effects, Error, HandleMotion, Hierarchy, Interpolation, Keyframe,
-    LevelStats, Mode, Result, SimulationDef, Status,
+    c_handle, c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
+    Axes, CallbackScope, Effect, Effects, Error, HandleMotion, HandleReaction, Hierarchy,
+    Interpolation, Keyframe, LevelStats, Mode, Result, SimulationDef, Status,
 };
 
 /// A simulation of one [`Hierarchy`]: preview steps at the current level (starting at level
@@ -207,9 +207,7 @@ impl<'h> Simulation<'h> {
     /// zero or non-finite axis.
     pub fn set_handle_motion(&mut self, handle: usize, motion: &HandleMotion) -> Result<()> {
         let raw = self.handle()?;
-        let handle = i32::try_from(handle).map_err(|_| {
-            Error::new(Status::OutOfRange, format!("handle {handle} does not exist"))
-        })?;
+        let handle = c_handle(handle)?;
         // SAFETY: live simulation; each vector points to 3 doubles alive for the call.
         let status = unsafe {
             sys::ps_sim_set_handle_motion(
@@ -242,9 +240,7 @@ impl<'h> Simulation<'h> {
         interpolation: Interpolation,
     ) -> Result<()> {
         let raw = self.handle()?;
-        let handle = i32::try_from(handle).map_err(|_| {
-            Error::new(Status::OutOfRange, format!("handle {handle} does not exist"))
-        })?;
+        let handle = c_handle(handle)?;
         let rows: Vec<[f64; 8]> = keys.iter().map(Keyframe::row).collect();
         // SAFETY: live simulation; `rows` holds keys.len() rows of 8 doubles alive for the call.
         let status = unsafe {
@@ -257,6 +253,40 @@ impl<'h> Simulation<'h> {
             )
         };
         self.check(status)
+    }
+
+    /// Makes handle `handle` prescribe only the coordinates in `axes` from the next step on;
+    /// its vertices move freely along the others (a roller: `Axes { x: false, y: false, z: true }`).
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the handle does not exist; [`Status::InvalidScene`] for no
+    /// axis.
+    pub fn set_handle_axes(&mut self, handle: usize, axes: Axes) -> Result<()> {
+        let raw = self.handle()?;
+        let handle = c_handle(handle)?;
+        // SAFETY: live simulation.
+        let status = unsafe { sys::ps_sim_set_handle_axes(raw, handle, axes.bits()) };
+        self.check(status)
+    }
+
+    /// The force and moment handle `handle`'s support applied after the last solve on `level`
+    /// (∂E/∂x at its prescribed coordinates; in a quasistatic step it balances the loads).
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] for a level or handle that does not exist;
+    /// [`Status::WrongCallOrder`] before any solve on the level, or on a preview level (its
+    /// proxy holds the finest handle vertices and reports no reaction).
+    pub fn handle_reaction(&self, level: usize, handle: usize) -> Result<HandleReaction> {
+        let raw = self.handle()?;
+        let level = c_level(level)?;
+        let handle = c_handle(handle)?;
+        let mut out = MaybeUninit::<sys::ps_handle_reaction>::uninit();
+        // SAFETY: live simulation; on PS_OK the library wrote the whole struct.
+        let status =
+            unsafe { sys::ps_sim_get_handle_reaction(raw, level, handle, out.as_mut_ptr()) };
+        self.check(status)?;
+        // SAFETY: PS_OK, so the struct is filled.
+        Ok(HandleReaction::from(unsafe { out.assume_init() }))
     }
 
     /// Advances `steps` steps of [`param("simulation.time_step")`](Self::param) seconds at
