@@ -290,7 +290,10 @@ typedef struct ps_sim_def {
   double simulation_time_step;     /**< s, (0, 100]; default 0.01 */
   double simulation_duration;      /**< s, (0, 1e7]; default 1 (CLI runs only) */
   int32_t simulation_output_every; /**< steps, ≥ 1; default 1 (CLI runs only) */
-  double material_youngs_modulus;  /**< Pa, (0, 1e13]; default 1e6 */
+  /** s, [0, 1e7]; default 0: gravity grows linearly from 0 over this time (quasistatic
+   *  self-weight in load steps), like a body's pressure_ramp; 0: full gravity at once */
+  double simulation_gravity_ramp;
+  double material_youngs_modulus; /**< Pa, (0, 1e13]; default 1e6 */
   /** Pa, [0, 1e13]; default 0: the bending term's own Young's modulus, 0 for
    *  material_youngs_modulus (cloth often bends stiffer or softer than it stretches) */
   double material_bending_youngs_modulus;
@@ -471,6 +474,57 @@ PS_API int32_t ps_sim_set_effect(ps_sim* sim, uint32_t effect, int32_t enabled);
 
 /** The enabled effects (ps_effect bits) into *out. */
 PS_API int32_t ps_sim_get_effects(const ps_sim* sim, uint32_t* out);
+
+/** How a load's force is spread over its vertex group (scene key "distribution"). */
+typedef enum ps_load_distribution {
+  PS_LOAD_BY_MASS = 0,    /**< f_i = F m_i / Σ m_j, m the lumped vertex masses (the default) */
+  PS_LOAD_BY_AREA = 1,    /**< f_i = F A_i / Σ A_j, A a third of each incident face's area */
+  PS_LOAD_PER_VERTEX = 2, /**< f_i = F on every vertex of the group */
+  PS_LOAD_DISTRIBUTION_FORCE32 = 0x7fffffff
+} ps_load_distribution;
+
+/**
+ * A dead point or line load on a vertex group (scene key "loads"): a force, a moment, or both,
+ * fixed in direction and size (potential −Σ f_i·x_i), grown linearly from 0 over `ramp`.
+ * Fill with ps_load_def_init(), then change fields.
+ */
+typedef struct ps_load_def {
+  int32_t body; /**< index of the scene's body (0 for ps_sim_create); default 0 */
+  /** The group: vertex indices within the body's mesh (each counted once). Required;
+   *  borrowed during ps_sim_add_load() only. */
+  const int32_t* vertices;
+  size_t num_vertices; /**< entries in vertices; default 0 */
+  double force[3];     /**< N: the total, or on each vertex with PS_LOAD_PER_VERTEX; default 0 */
+  ps_load_distribution distribution; /**< default PS_LOAD_BY_MASS */
+  /** Direction of the moment (any length > 0); default (0, 0, 1) */
+  double moment_axis[3];
+  /** N·m; default 0 (none): a couple of forces on the group, weighted like the force (equally
+   *  with PS_LOAD_PER_VERTEX), summing to zero, with moment `moment` about moment_axis. The
+   *  group must not lie on one line along the axis. */
+  double moment;
+  double ramp;             /**< s, ≥ 0; default 0 (full load at once) */
+  int32_t internal_cookie; /**< set by ps_load_def_init(); do not touch */
+} ps_load_def;
+
+/** Fills def with the defaults above. def must not be NULL. */
+PS_API void ps_load_def_init(ps_load_def* def);
+
+/**
+ * Adds a load from the next step on (from its ramp's start: the load at time t is
+ * min(1, t / ramp) of its full value, t the simulated time). Direct simulations apply it on
+ * their level; progressive ones on the finest level's vertices, through the prolongation on
+ * coarse levels (PSQ eq. 2). Its counters are the term "loads" in the step records.
+ * @param out_index Nullable: receives the load's index (0, 1, ... in order of addition).
+ * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_NULL_ARGUMENT (def, or vertices with
+ * num_vertices > 0), PS_ERROR_INVALID_ARGUMENT (a distribution that is not a
+ * ps_load_distribution), PS_ERROR_INVALID_SCENE naming the load and the problem (no vertices,
+ * a vertex or body out of range, a non-finite value, a zero moment axis, a negative ramp, a
+ * group that cannot carry the moment). On error nothing changed.
+ */
+PS_API int32_t ps_sim_add_load(ps_sim* sim, const ps_load_def* def, int32_t* out_index);
+
+/** Number of loads (ps_sim_add_load() and the scene's "loads") into *out. */
+PS_API int32_t ps_sim_num_loads(const ps_sim* sim, int32_t* out);
 
 /** Number of handles (scripted vertex groups) into *out. */
 PS_API int32_t ps_sim_num_handles(const ps_sim* sim, int32_t* out);

@@ -71,6 +71,18 @@ ProgressiveSimulation& quasistatic_driver(const ps_sim& sim);
 /// sim's kind for any other simulation.
 ProgressiveDynamics& animation_driver(const ps_sim& sim);
 
+/// Applies an edited copy of the scene; on failure the simulation keeps its old scene.
+template <typename Edit>
+void edit_scene(ps_sim& sim, Edit&& edit) {
+  Scene scene = sim.scene;
+  edit(scene);
+  if (sim.dynamics)
+    sim.dynamics->update_scene(scene);
+  else
+    sim.simulation->update_scene(scene);
+  sim.scene = std::move(scene);
+}
+
 /// Marks sim busy for the lifetime of this guard.
 class BusyGuard {
  public:

@@ -46,18 +46,6 @@ std::unique_ptr<ps_sim> sim_from_scene(Scene scene) {
   return sim;
 }
 
-/// Applies an edited copy of the scene; on failure the simulation keeps its old scene.
-template <typename Edit>
-void edit_scene(ps_sim& sim, Edit&& edit) {
-  Scene scene = sim.scene;
-  edit(scene);
-  if (sim.dynamics)
-    sim.dynamics->update_scene(scene);
-  else
-    sim.simulation->update_scene(scene);
-  sim.scene = std::move(scene);
-}
-
 const char* kind_name(ps_sim_kind kind) {
   switch (kind) {
     case PS_SIM_PSQ:

@@ -16,4 +16,12 @@ Eigen::VectorXd lumped_vertex_masses(const Positions& rest, const Faces& faces,
   return masses;
 }
 
+Eigen::VectorXd lumped_vertex_areas(const Positions& rest, const Faces& faces) {
+  const Eigen::VectorXd areas = face_areas(rest, faces);
+  Eigen::VectorXd lumped = Eigen::VectorXd::Zero(rest.rows());
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) lumped[faces(f, k)] += areas[f] / 3.0;  // A / 3
+  return lumped;
+}
+
 }  // namespace progsim

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "energy/force_couple.hpp"
 #include "mesh/mesh_topology.hpp"
 #include "mesh/mesh_validation.hpp"
 #include "scene/parameter_table.hpp"
@@ -28,6 +29,10 @@ Vec3 WindSettings::at(double t) const {
   const KeyBlend blend = key_blend(keyframes, t, Interpolation::linear);  // held outside
   return (1.0 - blend.weight) * keyframes[blend.from].velocity +
          blend.weight * keyframes[blend.to].velocity;
+}
+
+double ramp_factor(double t, double ramp) {
+  return ramp > 0.0 ? std::min(1.0, t / ramp) : 1.0;  // linear growth from 0 over the ramp
 }
 
 int Scene::num_steps() const {
@@ -79,22 +84,49 @@ void validate_contact(const Scene& scene) {
   check("material", "friction", g.friction);
 }
 
-void validate_handle(const Scene& scene, std::size_t h) {
-  const Handle& handle = scene.handles[h];
-  const std::string where = "handles[" + std::to_string(h) + "]";
-  if (handle.body < 0 || handle.body >= static_cast<int>(scene.bodies.size()))
-    fail(Status::invalid_scene,
-         where + ": body index " + std::to_string(handle.body) + " does not exist");
-  const int n = scene.bodies[handle.body].mesh.num_vertices();
-  if (handle.vertices.empty()) fail(Status::invalid_scene, where + ": selects no vertices");
-  for (int v : handle.vertices)
+/// A vertex group of handles and loads: an existing body, some vertices, each in its range.
+void validate_group(const Scene& scene, int body, const std::vector<int>& vertices,
+                    const std::string& where) {
+  if (body < 0 || body >= static_cast<int>(scene.bodies.size()))
+    fail(Status::invalid_scene, where + ": body index " + std::to_string(body) + " does not exist");
+  const int n = scene.bodies[body].mesh.num_vertices();
+  if (vertices.empty()) fail(Status::invalid_scene, where + ": selects no vertices");
+  for (int v : vertices)
     if (v < 0 || v >= n)
       fail(Status::invalid_scene, where + ": vertex " + std::to_string(v) +
                                       " is out of range [0, " + std::to_string(n) + ")");
+}
+
+void validate_handle(const Scene& scene, std::size_t h) {
+  const Handle& handle = scene.handles[h];
+  const std::string where = "handles[" + std::to_string(h) + "]";
+  validate_group(scene, handle.body, handle.vertices, where);
   validate_motion(handle.motion, where + ".motion");
   if (handle.axes == 0 || (handle.axes & ~unsigned{handle_axes_all}) != 0)
     fail(Status::invalid_scene, where + ": axes " + std::to_string(handle.axes) +
                                     " must be a non-empty set of x (1), y (2), z (4)");
+}
+
+/// Body index, a non-empty group of vertices in range, finite values, a ramp ≥ 0 and, with a
+/// moment, a group that can carry it (couple_forces with equal weights: whether it can does not
+/// depend on the weights).
+void validate_load(const Scene& scene, std::size_t k) {
+  const Load& load = scene.loads[k];
+  const std::string where = "loads[" + std::to_string(k) + "]";
+  validate_group(scene, load.body, load.vertices, where);
+  const Positions& rest = scene.bodies[load.body].mesh.vertices;
+  Positions points(static_cast<Eigen::Index>(load.vertices.size()), 3);
+  for (std::size_t j = 0; j < load.vertices.size(); ++j)
+    points.row(static_cast<Eigen::Index>(j)) = rest.row(load.vertices[j]);
+  if (!load.force.allFinite()) fail(Status::invalid_scene, where + ".force has a non-finite value");
+  if (!std::isfinite(load.moment) || !load.moment_axis.allFinite())
+    fail(Status::invalid_scene, where + ".moment has a non-finite value");
+  if (load.moment != 0.0 && !(load.moment_axis.norm() > 0.0))
+    fail(Status::invalid_scene, where + ".moment.axis must be non-zero");
+  if (!std::isfinite(load.ramp) || !(load.ramp >= 0.0))
+    fail(Status::invalid_scene, where + ".ramp must be a finite number >= 0");
+  couple_forces(points, Eigen::VectorXd::Ones(points.rows()), load.moment_axis, load.moment,
+                where + ".moment");
 }
 
 void validate_progressive(const ProgressiveSettings& p) {
@@ -144,7 +176,8 @@ void validate_wind(const Scene& scene) {
          "quasistatic step does not have");
 }
 
-/// What pulls a body in a quasistatic scene ("gravity", "pressure on its open surface"), or
+/// What pulls a body in a quasistatic scene ("gravity", "pressure on its open surface",
+/// "loads[k]"), or
 /// an empty string when its loads cancel (none, or pressure on a closed surface).
 std::string net_load(const Scene& scene, const Body& body) {
   if (scene.effects.has(Effect::gravity) && scene.gravity.norm() > 0.0) return "gravity";
@@ -152,6 +185,11 @@ std::string net_load(const Scene& scene, const Body& body) {
     const MeshTopology topology = build_topology(body.mesh.faces, body.mesh.num_vertices());
     for (bool on_boundary : topology.edge_on_boundary)
       if (on_boundary) return "pressure on its open surface";
+  }
+  for (std::size_t k = 0; k < scene.loads.size(); ++k) {
+    const Load& load = scene.loads[k];
+    if (&scene.bodies[load.body] == &body && (load.force.norm() > 0.0 || load.moment != 0.0))
+      return "loads[" + std::to_string(k) + "]";
   }
   return {};
 }
@@ -197,6 +235,7 @@ void validate_scene(const Scene& scene) {
   check("simulation", "time_step", scene.time_step);
   check("simulation", "duration", scene.duration);
   check("simulation", "output_every", scene.output_every);
+  check("simulation", "gravity_ramp", scene.gravity_ramp);
   check("solver", "newton_tolerance", scene.solver.tolerance);
   check("solver", "max_newton_iterations", scene.solver.max_iterations);
   check("solver", "max_cg_iterations", scene.solver.max_cg_iterations);
@@ -213,6 +252,7 @@ void validate_scene(const Scene& scene) {
       fail(Status::invalid_scene, body.name + ": velocity has a non-finite component");
   }
   for (std::size_t h = 0; h < scene.handles.size(); ++h) validate_handle(scene, h);
+  for (std::size_t k = 0; k < scene.loads.size(); ++k) validate_load(scene, k);
   validate_contact(scene);
   validate_progressive(scene.progressive);
   validate_wind(scene);

@@ -120,6 +120,27 @@ struct Handle {
   unsigned axes = handle_axes_all;
 };
 
+/// How a load's total force is spread over its vertex group.
+enum class LoadDistribution {
+  mass,        ///< f_i = F m_i / Σ m_j, by lumped vertex mass
+  area,        ///< f_i = F A_i / Σ A_j, by lumped vertex area (a third of each incident face)
+  per_vertex,  ///< f_i = F: the force acts on every vertex of the group
+};
+
+/// A dead (fixed direction and size) point or line load on a vertex group of one body: a
+/// force, a moment (a force couple) or both, grown linearly from 0 over `ramp`.
+struct Load {
+  int body = 0;               ///< index into Scene::bodies
+  std::vector<int> vertices;  ///< vertex indices within the body's mesh
+  Vec3 force = Vec3::Zero();  ///< N: the total, or per vertex with LoadDistribution::per_vertex
+  LoadDistribution distribution = LoadDistribution::mass;
+  Vec3 moment_axis = Vec3::UnitZ();  ///< direction a of the moment (any length > 0)
+  /// N·m: the moment M a of a couple on the group (its forces sum to zero), weighted like the
+  /// force (per_vertex: equally); 0: none.
+  double moment = 0.0;
+  double ramp = 0.0;  ///< s; the load grows linearly from 0 over this time (0: at once)
+};
+
 /// How the proxy energy of a coarse level reaches the finest mesh (PSQ §4.3).
 enum class ProxyProlongation {
   composed,  ///< P_L^{L−1} ∘ ⋯ ∘ P_{l+1}^l: each level's offsets rotate with its own faces
@@ -206,9 +227,11 @@ struct Scene {
   double duration = 1.0;                 ///< s
   int output_every = 1;                  ///< steps between written meshes
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< m/s²
+  double gravity_ramp = 0.0;  ///< s; gravity grows linearly from 0 over this time (0: at once)
   EffectSet effects;
   std::vector<Body> bodies;
   std::vector<Handle> handles;
+  std::vector<Load> loads;          ///< point and line loads (each an energy term's group)
   std::vector<Obstacle> obstacles;  ///< collision objects (need the contact effect)
   Ground ground;                    ///< analytic ground (needs the contact effect)
   ContactSettings contact;
@@ -219,6 +242,10 @@ struct Scene {
   /// Number of steps: round(duration / time_step), at least 1.
   int num_steps() const;
 };
+
+/// The fraction of a ramped load acting at time t (s): min(1, t / ramp), 1 for ramp = 0
+/// (Body::pressure_ramp, Load::ramp, Scene::gravity_ramp).
+double ramp_factor(double t, double ramp);
 
 /// Checks a motion: finite values, a non-zero rotation axis, valid keyframes
 /// (validate_keyframes()) and not both keyframes and a velocity or an angular velocity. Throws

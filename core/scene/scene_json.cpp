@@ -279,28 +279,84 @@ unsigned handle_axes(const Json& j, const std::string& where) {
   return axes;
 }
 
-Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string& where) {
-  expect_keys(j, where, {"body", "vertices", "box", "motion", "axes"});
-  Handle h;
-  h.body = body_index(require(j, "body", where), bodies, where + ".body");
-  if (h.body < 0 || h.body >= static_cast<int>(bodies.size()))
-    scene_error(where + ".body", "index " + std::to_string(h.body) + " does not exist");
+/// The option j[key] names among `known` (name, value), the first when j has no key;
+/// scene_error naming the known ones otherwise.
+template <typename Enum>
+Enum choice(const Json& j, const std::string& key, const std::string& where,
+            std::initializer_list<std::pair<const char*, Enum>> known) {
+  const std::string name = j.value(key, std::string(known.begin()->first));
+  std::string names;
+  for (const auto& [option, value] : known) {
+    if (name == option) return value;
+    names += (names.empty() ? "" : ", ") + std::string(option);
+  }
+  scene_error(where + "." + key, "unknown '" + name + "' (known: " + names + ")");
+}
+
+/// A body and vertices of it, as handles and loads select them.
+struct VertexSelection {
+  int body = 0;
+  std::vector<int> vertices;
+};
+
+/// j's "body" (name or index) and the vertices its "vertices" list and its "box" select.
+VertexSelection vertex_selection(const Json& j, const std::vector<Body>& bodies,
+                                 const std::string& where) {
+  VertexSelection s;
+  s.body = body_index(require(j, "body", where), bodies, where + ".body");
+  if (s.body < 0 || s.body >= static_cast<int>(bodies.size()))
+    scene_error(where + ".body", "index " + std::to_string(s.body) + " does not exist");
   if (j.contains("vertices")) {
     const Json& v = j.at("vertices");
     if (!v.is_array()) scene_error(where + ".vertices", "must be an array of vertex indices");
     for (std::size_t k = 0; k < v.size(); ++k)
-      h.vertices.push_back(integer(v[k], where + ".vertices[" + std::to_string(k) + "]"));
+      s.vertices.push_back(integer(v[k], where + ".vertices[" + std::to_string(k) + "]"));
   }
   if (j.contains("box")) {
     const std::vector<int> boxed =
-        box_selection(j.at("box"), bodies[h.body].mesh.vertices, where + ".box");
-    h.vertices.insert(h.vertices.end(), boxed.begin(), boxed.end());
+        box_selection(j.at("box"), bodies[s.body].mesh.vertices, where + ".box");
+    s.vertices.insert(s.vertices.end(), boxed.begin(), boxed.end());
   }
-  if (h.vertices.empty())
+  if (s.vertices.empty())
     scene_error(where, "selects no vertices (give 'vertices' or a 'box' that contains some)");
+  return s;
+}
+
+Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string& where) {
+  expect_keys(j, where, {"body", "vertices", "box", "motion", "axes"});
+  Handle h;
+  VertexSelection selection = vertex_selection(j, bodies, where);
+  h.body = selection.body;
+  h.vertices = std::move(selection.vertices);
   if (j.contains("motion")) h.motion = motion(j.at("motion"), where + ".motion");
   if (j.contains("axes")) h.axes = handle_axes(j.at("axes"), where + ".axes");
   return h;
+}
+
+/// A load: {"body", "vertices"/"box", "force", "distribution", "moment": {"axis", "magnitude"},
+/// "ramp"}, with a force, a moment or both.
+Load load(const Json& j, const std::vector<Body>& bodies, const std::string& where) {
+  expect_keys(j, where, {"body", "vertices", "box", "force", "distribution", "moment", "ramp"});
+  if (!j.contains("force") && !j.contains("moment"))
+    scene_error(where, "needs a 'force', a 'moment' or both");
+  Load l;
+  VertexSelection selection = vertex_selection(j, bodies, where);
+  l.body = selection.body;
+  l.vertices = std::move(selection.vertices);
+  l.force = vec3_or(j, "force", Vec3::Zero(), where);
+  l.distribution = choice<LoadDistribution>(j, "distribution", where,
+                                            {{"mass", LoadDistribution::mass},
+                                             {"area", LoadDistribution::area},
+                                             {"per_vertex", LoadDistribution::per_vertex}});
+  if (j.contains("moment")) {
+    const Json& m = j.at("moment");
+    const std::string at = where + ".moment";
+    expect_keys(m, at, {"axis", "magnitude"});
+    l.moment_axis = vec3(require(m, "axis", at), at + ".axis");
+    l.moment = number(require(m, "magnitude", at), at + ".magnitude");
+  }
+  l.ramp = number_or(j, "ramp", 0.0, where);
+  return l;
 }
 
 Obstacle obstacle(const Json& j, const std::string& where, const std::string& base_dir) {
@@ -342,7 +398,7 @@ void contact(const Json& j, Scene& scene) {
 
 void simulation(const Json& j, Scene& scene) {
   const std::string where = "simulation";
-  expect_keys(j, where, {"mode", "time_step", "duration", "output_every"});
+  expect_keys(j, where, {"mode", "time_step", "duration", "output_every", "gravity_ramp"});
   const std::string mode = j.value("mode", std::string("dynamic"));
   if (mode == "dynamic")
     scene.mode = StepMode::dynamic;
@@ -353,6 +409,7 @@ void simulation(const Json& j, Scene& scene) {
   scene.time_step = parameter(j, "simulation", "time_step", where);
   scene.duration = parameter(j, "simulation", "duration", where);
   scene.output_every = static_cast<int>(parameter(j, "simulation", "output_every", where));
+  scene.gravity_ramp = parameter(j, "simulation", "gravity_ramp", where);
 }
 
 void solver(const Json& j, Scene& scene) {
@@ -395,20 +452,6 @@ WindSettings wind(const Json& j, const Scene& scene) {
           wind_keyframe(keys[k], where + ".keyframes[" + std::to_string(k) + "]"));
   }
   return w;
-}
-
-/// The option j[key] names among `known` (name, value), the first when j has no key;
-/// scene_error naming the known ones otherwise.
-template <typename Enum>
-Enum choice(const Json& j, const std::string& key, const std::string& where,
-            std::initializer_list<std::pair<const char*, Enum>> known) {
-  const std::string name = j.value(key, std::string(known.begin()->first));
-  std::string names;
-  for (const auto& [option, value] : known) {
-    if (name == option) return value;
-    names += (names.empty() ? "" : ", ") + std::string(option);
-  }
-  scene_error(where + "." + key, "unknown '" + name + "' (known: " + names + ")");
 }
 
 /// The "progressive" section: {"coarse_levels": k, "coarsening_ratio": r} or {"levels": [...]}
@@ -459,7 +502,7 @@ ProgressiveSettings progressive(const Json& j) {
 Scene scene_from_json(const Json& root, const std::string& base_dir) {
   expect_keys(root, "scene",
               {"name", "simulation", "gravity", "effects", "solver", "bodies", "handles", "contact",
-               "obstacles", "ground", "progressive", "wind"});
+               "obstacles", "ground", "progressive", "wind", "loads"});
   Scene scene;
   scene.name = root.value("name", std::string("scene"));
   simulation(root.contains("simulation") ? root.at("simulation") : Json::object(), scene);
@@ -481,6 +524,12 @@ Scene scene_from_json(const Json& root, const std::string& base_dir) {
     for (std::size_t h = 0; h < handles.size(); ++h)
       scene.handles.push_back(
           handle(handles[h], scene.bodies, "handles[" + std::to_string(h) + "]"));
+  }
+  if (root.contains("loads")) {
+    const Json& loads = root.at("loads");
+    if (!loads.is_array()) scene_error("loads", "must be an array");
+    for (std::size_t k = 0; k < loads.size(); ++k)
+      scene.loads.push_back(load(loads[k], scene.bodies, "loads[" + std::to_string(k) + "]"));
   }
   contact(root.contains("contact") ? root.at("contact") : Json::object(), scene);
   if (root.contains("progressive")) scene.progressive = progressive(root.at("progressive"));

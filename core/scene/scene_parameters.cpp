@@ -26,6 +26,7 @@ const std::vector<Accessor>& accessors() {
   static const std::vector<Accessor> table = {
       {"simulation.time_step", [](Scene& s) { return std::vector<double*>{&s.time_step}; }},
       {"simulation.duration", [](Scene& s) { return std::vector<double*>{&s.duration}; }},
+      {"simulation.gravity_ramp", [](Scene& s) { return std::vector<double*>{&s.gravity_ramp}; }},
       {"solver.newton_tolerance",
        [](Scene& s) { return std::vector<double*>{&s.solver.tolerance}; }},
       {"material.youngs_modulus",

@@ -6,6 +6,7 @@
 #include "common/error.hpp"
 #include "common/timer.hpp"
 #include "energy/consistency_penalty.hpp"
+#include "energy/dead_loads.hpp"
 #include "energy/gravity.hpp"
 #include "energy/inertia.hpp"
 #include "energy/pressure.hpp"
@@ -15,6 +16,7 @@
 #include "sim/contact_setup.hpp"
 #include "sim/handle_reactions.hpp"
 #include "sim/handle_step_bound.hpp"
+#include "sim/load_forces.hpp"
 #include "sim/obstacle_script.hpp"
 #include "sim/shell_elastics.hpp"
 #include "sim/start_separation.hpp"
@@ -119,11 +121,11 @@ void LevelSimulation::build_problem() {
   const int n = model_.rest.num_vertices();
   auto problem = std::make_unique<Problem>(3 * n);
   Inertia* inertia = nullptr;
-  std::vector<std::pair<Pressure*, int>> pressures;
+  RampedTerms ramped;
   const EffectSet& fx = scene_.effects;
   if (scene_.mode == StepMode::dynamic || scene_.progressive.proximal)  // PSQ eq. 1 / 3
     inertia = &problem->add_term(std::make_unique<Inertia>(model_.vertex_masses, scene_.time_step));
-  add_elastics(*problem, pressures);
+  add_elastics(*problem, ramped);
   Inertia* penalty = nullptr;
   if (scene_.mode == StepMode::dynamic && level_.consistency_weight > 0.0)  // VPD eq. 4
     penalty = &problem->add_term(std::make_unique<ConsistencyPenalty>(
@@ -148,7 +150,7 @@ void LevelSimulation::build_problem() {
   problem_ = std::move(problem);
   inertia_ = inertia;
   penalty_ = penalty;
-  pressures_ = std::move(pressures);
+  ramped_ = std::move(ramped);
   contact_ = contact;
   wind_ = wind;
   friction_ = friction;
@@ -162,25 +164,42 @@ void LevelSimulation::pin_finest_handles(double t) {
   if (proxy_) proxy_->pin_finest_dofs(finest_handles_.dofs(), finest_handles_.dof_targets(t));
 }
 
-void LevelSimulation::add_elastics(Problem& problem,
-                                   std::vector<std::pair<Pressure*, int>>& pressures) const {
-  if (finest_) return add_proxy_elastics(problem, pressures);
-  ShellElastics own = make_shell_elastics(scene_, model_, true);  // the level's own energy
-  pressures = own.pressures;
-  for (auto& term : own.terms) problem.add_term(std::move(term));
+std::vector<VertexForces> LevelSimulation::level_loads() const {
+  if (scene_.loads.empty()) return {};
+  if (finest_) return load_forces(scene_, *finest_);
+  if (level_.is_finest()) return load_forces(scene_, model_);
+  return restrict_loads(load_forces(scene_, build_shell_model(scene_)), *level_.hierarchy,
+                        level_.level);
 }
 
-void LevelSimulation::add_proxy_elastics(Problem& problem,
-                                         std::vector<std::pair<Pressure*, int>>& pressures) const {
+void LevelSimulation::add_elastics(Problem& problem, RampedTerms& ramped) const {
+  if (finest_) return add_proxy_elastics(problem, ramped);
+  ShellElastics own = make_shell_elastics(scene_, model_, true);  // the level's own energy
+  ramped.pressures = own.pressures;
+  ramped.gravity = own.gravity;
+  for (auto& term : own.terms) problem.add_term(std::move(term));
+  if (!scene_.loads.empty())
+    ramped.loads =
+        &problem.add_term(std::make_unique<DeadLoads>(level_loads(), model_.rest.num_vertices()));
+}
+
+void LevelSimulation::add_proxy_elastics(Problem& problem, RampedTerms& ramped) const {
   // A dynamic preview's gravity acts on the prolonged masses M_l its inertia uses: through the
   // prolongation it would also act on the offsets a(x), a torque that makes a free fall deform.
   const bool dynamic = scene_.mode == StepMode::dynamic;
   if (dynamic && scene_.effects.has(Effect::gravity))
-    problem.add_term(std::make_unique<Gravity>(model_.vertex_masses, scene_.gravity));
+    ramped.gravity =
+        &problem.add_term(std::make_unique<Gravity>(model_.vertex_masses, scene_.gravity));
   const MembraneModel membrane = scene_.progressive.preview_membrane;
   ShellElastics finest = make_shell_elastics(scene_, *finest_, !dynamic, membrane);  // Ψ_L, eq. 2
+  if (!scene_.loads.empty()) {  // point loads act where they are: on finest vertices, at P(x)
+    auto loads = std::make_unique<DeadLoads>(level_loads(), finest_->rest.num_vertices());
+    ramped.loads = loads.get();
+    finest.terms.push_back(std::move(loads));
+  }
   if (finest.terms.empty()) return;
-  pressures = finest.pressures;
+  ramped.pressures = finest.pressures;
+  if (finest.gravity) ramped.gravity = finest.gravity;
   const ProxyHessian hessian = scene_.progressive.hessian;
   if (hessian == ProxyHessian::galerkin || (hessian == ProxyHessian::automatic && dynamic)) {
     // Lazily only where each step is solved to the tolerance: PSQ's capped preview steps
@@ -193,7 +212,7 @@ void LevelSimulation::add_proxy_elastics(Problem& problem,
     return;
   }
   ShellElastics own = make_shell_elastics(scene_, model_, false, membrane);  // preconditioner
-  pressures.insert(pressures.end(), own.pressures.begin(), own.pressures.end());
+  ramped.pressures.insert(ramped.pressures.end(), own.pressures.begin(), own.pressures.end());
   problem.add_term(std::make_unique<ProlongedElastics>(level_.to_finest, std::move(finest.terms),
                                                        std::move(own.terms)));
 }
@@ -226,12 +245,15 @@ Positions LevelSimulation::obstacle_positions() const {
   return contact_ ? contact_->obstacle_positions() : Positions(0, 3);
 }
 
-void LevelSimulation::apply_pressure(double t) {
-  for (auto& [term, b] : pressures_) {
+void LevelSimulation::apply_ramps(double t) {
+  for (auto& [term, b] : ramped_.pressures) {
     const Body& body = scene_.bodies[b];
-    const double ramp = body.pressure_ramp > 0.0 ? std::min(1.0, t / body.pressure_ramp) : 1.0;
-    term->set_pressure(ramp * body.pressure);
+    term->set_pressure(ramp_factor(t, body.pressure_ramp) * body.pressure);
   }
+  if (ramped_.gravity)
+    ramped_.gravity->set_acceleration(ramp_factor(t, scene_.gravity_ramp) * scene_.gravity);
+  for (std::size_t k = 0; ramped_.loads && k < scene_.loads.size(); ++k)
+    ramped_.loads->set_factor(k, ramp_factor(t, scene_.loads[k].ramp));
 }
 
 double LevelSimulation::advance_scripts(double t, double decrement_scale, NewtonReport& report) {
@@ -397,7 +419,7 @@ StepRecord LevelSimulation::solve_at(double t, bool new_step, const StepTargets&
     friction_->lag(x_);
     friction_lagged_ = true;
   }
-  apply_pressure(t);
+  apply_ramps(t);
   pin_finest_handles(t);
   StepRecord record;
   const double decrement_scale = dynamic ? h : 1.0;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "energy/dead_loads.hpp"
 #include "problem/problem.hpp"
 #include "scene/scene.hpp"
 #include "sim/handle_targets.hpp"
@@ -17,6 +18,7 @@
 
 namespace progsim {
 
+class Gravity;
 class Inertia;
 class Pressure;
 class ContactPotential;
@@ -130,15 +132,24 @@ class LevelSimulation {
   /// model_, handles_ (and finest_ for the proxy) from scene_ and level_.
   void build_models();
   void build_problem();
-  /// Membrane, bending, gravity and pressure: direct, or through the prolongation.
-  void add_elastics(Problem& problem, std::vector<std::pair<Pressure*, int>>& pressures) const;
+  /// The terms whose loads ramp up over time (Body::pressure_ramp, Load::ramp,
+  /// Scene::gravity_ramp), owned by the problem (or its proxy term).
+  struct RampedTerms {
+    std::vector<std::pair<Pressure*, int>> pressures;  ///< (term, body)
+    Gravity* gravity = nullptr;                        ///< null without gravity
+    DeadLoads* loads = nullptr;                        ///< null without loads
+  };
+  /// Membrane, bending, gravity, pressure and loads: direct, or through the prolongation.
+  void add_elastics(Problem& problem, RampedTerms& ramped) const;
+  /// The scene's loads on this level's vertices (load_forces), or, with the proxy energy, on the
+  /// finest level's; a direct solve on a coarse level takes them restricted (restrict_loads).
+  std::vector<VertexForces> level_loads() const;
   /// One solve at time t (a new step when advancing, the same loads otherwise) toward
   /// `targets` (empty: implicit Euler on the level alone).
   StepRecord solve_at(double t, bool new_step, const StepTargets& targets = {});
-  /// Membrane, bending and pressure through the prolongation; gravity through it too for a
-  /// quasistatic preview, on the level's prolonged masses for a dynamic one.
-  void add_proxy_elastics(Problem& problem,
-                          std::vector<std::pair<Pressure*, int>>& pressures) const;
+  /// Membrane, bending, pressure and loads through the prolongation; gravity through it too for
+  /// a quasistatic preview, on the level's prolonged masses for a dynamic one.
+  void add_proxy_elastics(Problem& problem, RampedTerms& ramped) const;
   /// The motion after a dynamic step from `before` (xᵗ) and `older` (xᵗ⁻¹), `predicted` its x̂,
   /// with gradient_ the objective's gradient at the new state.
   MotionRecord motion(const Vector& older, const Vector& before, const Vector& predicted) const;
@@ -148,7 +159,8 @@ class LevelSimulation {
   void pin_finest_handles(double t);
   /// Adds the contact term after checking that the current state does not intersect.
   ContactPotential& add_contact(Problem& problem);
-  void apply_pressure(double t);
+  /// Scales pressures, gravity and loads to their ramps at time t.
+  void apply_ramps(double t);
   /// After a solve from a fitted start: offsets and strain limits moved back toward their own
   /// values, what is still fitted counted in `record`.
   void restore_fitted(StepRecord& record);
@@ -176,8 +188,8 @@ class LevelSimulation {
   HandleTargets handles_;
   std::unique_ptr<Problem> problem_;
   NewtonSolver solver_;
-  Inertia* inertia_ = nullptr;                        // owned by problem_, null for quasistatics
-  std::vector<std::pair<Pressure*, int>> pressures_;  // (term, body), owned by problem_
+  Inertia* inertia_ = nullptr;  // owned by problem_, null for quasistatics
+  RampedTerms ramped_;          // owned by problem_
   std::unique_ptr<ObstacleScript> obstacles_;
   ContactPotential* contact_ = nullptr;    // owned by problem_, null without contact
   FrictionPotential* friction_ = nullptr;  // owned by problem_, null without friction

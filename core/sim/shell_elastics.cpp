@@ -34,8 +34,11 @@ ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, b
   if (fx.has(Effect::bending))
     out.terms.push_back(std::make_unique<HingeBending>(
         rest, model.rest.faces, model.topology.hinges, model.face_materials));
-  if (with_gravity && fx.has(Effect::gravity))
-    out.terms.push_back(std::make_unique<Gravity>(model.vertex_masses, scene.gravity));
+  if (with_gravity && fx.has(Effect::gravity)) {
+    auto gravity = std::make_unique<Gravity>(model.vertex_masses, scene.gravity);
+    out.gravity = gravity.get();
+    out.terms.push_back(std::move(gravity));
+  }
   if (fx.has(Effect::pressure)) {
     for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
       if (scene.bodies[b].pressure == 0.0) continue;

@@ -12,12 +12,14 @@
 
 namespace progsim {
 
+class Gravity;
 class Pressure;
 
-/// The terms, and which of them are pressures (to ramp the load between steps).
+/// The terms, and which of them are pressures and gravity (to ramp the loads between steps).
 struct ShellElastics {
   std::vector<std::unique_ptr<EnergyTerm>> terms;
   std::vector<std::pair<Pressure*, int>> pressures;  ///< (term owned by `terms`, body index)
+  Gravity* gravity = nullptr;                        ///< owned by `terms`; null without gravity
 };
 
 /// Membrane (of the given model), bending and (with_gravity) gravity on `model`, and a pressure

@@ -14,10 +14,10 @@ using progsim::test_support::expect_error;
 
 namespace {
 
-constexpr double kStripLength = 0.5, kStripWidth = 0.05, kStripThickness = 5e-3,
-                 kStripDensity = 1000.0;
-constexpr int kStripCells = 40;
-const Vec3 kStripGravity(0.0, 0.0, -9.81);
+constexpr double kProppedLength = 0.5, kProppedWidth = 0.05, kProppedThickness = 5e-3,
+                 kProppedDensity = 1000.0;
+constexpr int kProppedCells = 40;
+const Vec3 kProppedGravity(0.0, 0.0, -9.81);
 
 /// A stiff strip along x (ν = 0), clamped over its first two columns (x ≤ 1.5 Δx, so the
 /// first hinge is held flat); quasistatic, bending under its own weight by about 4 mm.
@@ -26,19 +26,20 @@ Scene cantilever_strip_scene() {
   scene.name = "strip";
   scene.mode = StepMode::quasistatic;
   scene.time_step = 1.0;
-  scene.gravity = kStripGravity;
+  scene.gravity = kProppedGravity;
   for (Effect e : {Effect::membrane, Effect::bending, Effect::gravity}) scene.effects.enable(e);
   Body body;
   body.name = "strip";
-  body.mesh = make_grid(kStripLength, kStripWidth, kStripCells, 2);
+  body.mesh = make_grid(kProppedLength, kProppedWidth, kProppedCells, 2);
   body.material.youngs_modulus = 1e10;
   body.material.poisson_ratio = 0.0;
-  body.material.thickness = kStripThickness;
-  body.material.density = kStripDensity;
+  body.material.thickness = kProppedThickness;
+  body.material.density = kProppedDensity;
   scene.bodies.push_back(body);
   Handle clamp;
   for (int v = 0; v < body.mesh.num_vertices(); ++v)
-    if (body.mesh.vertices(v, 0) < 1.5 * kStripLength / kStripCells) clamp.vertices.push_back(v);
+    if (body.mesh.vertices(v, 0) < 1.5 * kProppedLength / kProppedCells)
+      clamp.vertices.push_back(v);
   scene.handles.push_back(clamp);
   scene.solver.tolerance = 1e-8;
   return scene;
@@ -50,14 +51,15 @@ Scene propped_strip_scene(unsigned roller_axes) {
   Handle roller;
   const TriangleMesh& mesh = scene.bodies[0].mesh;
   for (int v = 0; v < mesh.num_vertices(); ++v)
-    if (mesh.vertices(v, 0) > kStripLength - 1e-9) roller.vertices.push_back(v);
+    if (mesh.vertices(v, 0) > kProppedLength - 1e-9) roller.vertices.push_back(v);
   roller.axes = roller_axes;
   scene.handles.push_back(roller);
   return scene;
 }
 
 double strip_weight() {
-  return kStripDensity * kStripThickness * kStripLength * kStripWidth * -kStripGravity.z();
+  return kProppedDensity * kProppedThickness * kProppedLength * kProppedWidth *
+         -kProppedGravity.z();
 }
 
 Vec3 total_reaction_force(const std::vector<HandleReaction>& reactions) {
@@ -83,12 +85,12 @@ TEST(HandleReactions, TheClampCarriesTheWeightAndItsMoment) {
   const auto x = sim.positions();
   for (int v = 0; v < x.rows(); ++v)
     weight_moment +=
-        (x.row(v).transpose() - clamp.point).cross(sim.model().vertex_masses[v] * kStripGravity);
+        (x.row(v).transpose() - clamp.point).cross(sim.model().vertex_masses[v] * kProppedGravity);
   EXPECT_LT((clamp.moment + weight_moment).norm(), 1e-6 * weight_moment.norm());
   // A cantilever of length L under q: the clamp moment q L²/2 about y, to the clamp's width.
   const double span =
-      kStripLength - 0.75 * kStripLength / kStripCells;  // from the clamp's centroid
-  EXPECT_NEAR(clamp.moment.y(), -strip_weight() / kStripLength * span * span / 2.0,
+      kProppedLength - 0.75 * kProppedLength / kProppedCells;  // from the clamp's centroid
+  EXPECT_NEAR(clamp.moment.y(), -strip_weight() / kProppedLength * span * span / 2.0,
               0.03 * strip_weight() * span);
 }
 
@@ -101,8 +103,8 @@ TEST(HandleReactions, APropCarriesThreeEighthsOfTheSpanAndARollerNoHorizontalLoa
             1e-6 * strip_weight());
   // Propped cantilever under a uniform load q (beam theory): the prop carries 3 q ℓ / 8 of the
   // span ℓ between the held hinge (x = Δx) and the prop, plus its own half cell's weight.
-  const double dx = kStripLength / kStripCells, q = strip_weight() / kStripLength,
-               span = kStripLength - dx;
+  const double dx = kProppedLength / kProppedCells, q = strip_weight() / kProppedLength,
+               span = kProppedLength - dx;
   const double prop = 3.0 * q * span / 8.0 + q * dx / 2.0;
   EXPECT_NEAR(r.reactions[1].force.z(), prop, 0.03 * prop);
   // The roller is free in x and y: nothing pushes along the strip, and its end slid inward as
@@ -110,7 +112,7 @@ TEST(HandleReactions, APropCarriesThreeEighthsOfTheSpanAndARollerNoHorizontalLoa
   EXPECT_EQ(r.reactions[1].force.x(), 0.0);
   EXPECT_LT(std::abs(r.reactions[0].force.x()), 1e-6 * strip_weight());
   const TriangleMesh& rest = sim.scene().bodies[0].mesh;
-  const int end = kStripCells;  // vertex (i = nx, j = 0)
+  const int end = kProppedCells;  // vertex (i = nx, j = 0)
   EXPECT_LT(sim.positions()(end, 0), rest.vertices(end, 0) - 1e-7);
   EXPECT_EQ(sim.positions()(end, 2), rest.vertices(end, 2));  // held in height
 
@@ -136,7 +138,7 @@ TEST(HandleReactions, ARollerHoldsOnEveryLevelOfAProgressiveSolve) {
   EXPECT_LT((total_reaction_force(finest) - Vec3(0, 0, strip_weight())).norm(),
             1e-6 * strip_weight());
   const TriangleMesh& rest = scene.bodies[0].mesh;
-  EXPECT_LT(psq.current().positions()(kStripCells, 0), rest.vertices(kStripCells, 0) - 1e-7);
+  EXPECT_LT(psq.current().positions()(kProppedCells, 0), rest.vertices(kProppedCells, 0) - 1e-7);
 }
 
 TEST(HandleReactions, DirectDynamicStepsReportTheForceThatAcceleratesTheHandle) {
@@ -157,7 +159,7 @@ TEST(HandleReactions, DirectDynamicStepsReportTheForceThatAcceleratesTheHandle) 
   for (int v = 0; v < m.size(); ++v)
     momentum_change += m[v] * (sim.dofs().segment<3>(3 * v) - before.segment<3>(3 * v)) /
                        (scene.time_step * scene.time_step);  // m (x¹ − x⁰)/h², v⁰ = 0
-  const Vec3 expected = momentum_change - m.sum() * kStripGravity;
+  const Vec3 expected = momentum_change - m.sum() * kProppedGravity;
   EXPECT_LT((r.reactions[0].force - expected).norm(), 1e-6 * expected.norm());
   EXPECT_GT(r.reactions[0].force.y(), 0.0);
 }

@@ -97,6 +97,13 @@ KINDS: Dict[str, int] = {
     "progressive_dynamics": lib.PS_SIM_PROGRESSIVE_DYNAMICS,
 }
 
+#: Load distributions of :meth:`Simulation.add_load` (``ps_load_distribution``).
+LOAD_DISTRIBUTIONS: Dict[str, int] = {
+    "mass": lib.PS_LOAD_BY_MASS,
+    "area": lib.PS_LOAD_BY_AREA,
+    "per_vertex": lib.PS_LOAD_PER_VERTEX,
+}
+
 _GROUPS = ("simulation_", "material_", "contact_", "solver_", "progressive_")
 
 #: Keyword → ps_sim_def field, for the parameter-table fields (``time_step`` →
@@ -388,6 +395,7 @@ class Simulation(NativeObject):
         time_step: Optional[float] = None,
         duration: Optional[float] = None,
         output_every: Optional[int] = None,
+        gravity_ramp: Optional[float] = None,
         youngs_modulus: Optional[float] = None,
         bending_youngs_modulus: Optional[float] = None,
         poisson_ratio: Optional[float] = None,
@@ -426,6 +434,8 @@ class Simulation(NativeObject):
             time_step: s, in (0, 100]; default 0.01.
             duration: s, in (0, 1e7]; default 1 (used by CLI runs only).
             output_every: steps, >= 1; default 1 (used by CLI runs only).
+            gravity_ramp: s, in [0, 1e7]; default 0. Gravity grows linearly from 0 over this
+                time (quasistatic self-weight in load steps); 0: full gravity at once.
             youngs_modulus: Pa, in (0, 1e13]; default 1e6.
             bending_youngs_modulus: Pa, in [0, 1e13]; default 0: the bending term's own
                 Young's modulus (0: ``youngs_modulus``).
@@ -486,6 +496,7 @@ class Simulation(NativeObject):
             "time_step": time_step,
             "duration": duration,
             "output_every": output_every,
+            "gravity_ramp": gravity_ramp,
             "youngs_modulus": youngs_modulus,
             "bending_youngs_modulus": bending_youngs_modulus,
             "poisson_ratio": poisson_ratio,
@@ -869,6 +880,68 @@ class Simulation(NativeObject):
             moment=np.array(list(out.moment), dtype=np.float64),
             point=np.array(list(out.point), dtype=np.float64),
         )
+
+    @property
+    def num_loads(self) -> int:
+        """Number of point and line loads (:meth:`add_load` and the scene's ``"loads"``)."""
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_num_loads, out)
+        return int(out[0])
+
+    def add_load(
+        self,
+        vertices: Any,
+        *,
+        force: Optional[Sequence[float]] = None,
+        distribution: str = "mass",
+        moment: float = 0.0,
+        moment_axis: Optional[Sequence[float]] = None,
+        ramp: float = 0.0,
+        body: int = 0,
+    ) -> int:
+        """Adds a dead point or line load on a vertex group from the next step on.
+
+        The load is fixed in direction and size (potential −Σ f_i·x_i) and grows linearly
+        from 0 over ``ramp`` seconds of simulated time. Progressive simulations apply it on the
+        finest level's vertices, through the prolongation on coarse levels.
+
+        Args:
+            vertices: vertex indices within the body's mesh, shape (k,), k >= 1.
+            force: (Fx, Fy, Fz), N: the total force, or the force on each vertex with
+                ``distribution="per_vertex"``; default zero.
+            distribution: ``"mass"`` (by lumped vertex mass, the default), ``"area"`` (by
+                lumped vertex area) or ``"per_vertex"`` (the force on every vertex).
+            moment: N·m; default 0. A couple of forces on the group (summing to zero) with this
+                moment about ``moment_axis``, weighted like the force.
+            moment_axis: direction of the moment (any length > 0); default +z.
+            ramp: s, >= 0; default 0 (the full load at once).
+            body: index of the scene's body; default 0.
+
+        Returns:
+            The load's index (0, 1, ... in order of addition).
+
+        Raises:
+            InvalidArgumentError: an unknown distribution, a vector without 3 components.
+            InvalidSceneError: no vertices, a vertex or body out of range, a non-finite value, a
+                zero moment axis, a negative ramp, a group on one line along the moment's axis.
+        """
+        definition = ffi.new("ps_load_def*")
+        lib.ps_load_def_init(definition)
+        indices = as_indices(vertices, "vertices", "(k,)")
+        buffer = ffi.from_buffer("int32_t[]", indices) if indices.size else ffi.NULL
+        definition.body = int32_value(body, "body")
+        definition.vertices = buffer
+        definition.num_vertices = indices.size
+        if force is not None:
+            definition.force = three_floats(force, "force")
+        definition.distribution = _choice(LOAD_DISTRIBUTIONS, distribution, "distribution")
+        definition.moment = real_value(moment, "moment")
+        if moment_axis is not None:
+            definition.moment_axis = three_floats(moment_axis, "moment_axis")
+        definition.ramp = real_value(ramp, "ramp")
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_add_load, definition, out)
+        return int(out[0])
 
     # -- stepping ------------------------------------------------------------------------------
 

@@ -253,6 +253,10 @@ impl BitOr for Effects {
 pub struct SimulationDef {
     /// Time step h, s, in (0, 100]; default 0.01 (`simulation.time_step`).
     pub time_step: f64,
+    /// Gravity grows linearly from 0 to its full value over this time, s, in [0, 1e7]; default
+    /// 0 = full gravity at once (`simulation.gravity_ramp`): quasistatic self-weight in load
+    /// steps, like a body's pressure ramp.
+    pub gravity_ramp: f64,
     /// Young's modulus E, Pa, in (0, 1e13]; default 1e6 (`material.youngs_modulus`).
     pub youngs_modulus: f64,
     /// Young's modulus of the bending term alone, Pa, in [0, 1e13]; default 0 = `youngs_modulus`
@@ -351,6 +355,7 @@ impl Default for SimulationDef {
         let raw = raw_sim_def();
         SimulationDef {
             time_step: raw.simulation_time_step,
+            gravity_ramp: raw.simulation_gravity_ramp,
             youngs_modulus: raw.material_youngs_modulus,
             bending_youngs_modulus: raw.material_bending_youngs_modulus,
             poisson_ratio: raw.material_poisson_ratio,
@@ -394,6 +399,7 @@ impl SimulationDef {
     pub(crate) fn to_raw(&self) -> sys::ps_sim_def {
         let mut raw = raw_sim_def();
         raw.simulation_time_step = self.time_step;
+        raw.simulation_gravity_ramp = self.gravity_ramp;
         raw.material_youngs_modulus = self.youngs_modulus;
         raw.material_bending_youngs_modulus = self.bending_youngs_modulus;
         raw.material_poisson_ratio = self.poisson_ratio;
@@ -746,6 +752,7 @@ mod tests {
         assert_eq!(def.prediction, Prediction::VelocityOnly);
         assert_eq!(def.consistency_weight, 0.0);
         assert_eq!(def.galerkin_refresh, 0.5);
+        assert_eq!(def.gravity_ramp, 0.0);
         assert_eq!(def.effects, Effect::Membrane | Effect::Bending | Effect::Gravity);
         assert_eq!(def.gravity, [0.0, -9.81, 0.0]);
         assert_eq!(def.pressure, 0.0);
@@ -759,6 +766,7 @@ mod tests {
     fn raw_def_carries_every_field() {
         let def = SimulationDef {
             time_step: 0.02,
+            gravity_ramp: 0.3,
             mode: Mode::Quasistatic,
             prediction: Prediction::PerFrame,
             consistency_weight: 0.5,
@@ -779,6 +787,7 @@ mod tests {
         let rows = unsafe { std::slice::from_raw_parts(raw.wind_keyframes, 8) };
         assert_eq!(rows[4], 1.0);
         assert_eq!(raw.simulation_time_step, 0.02);
+        assert_eq!(raw.simulation_gravity_ramp, 0.3);
         assert_eq!(raw.mode, sys::PS_MODE_QUASISTATIC);
         assert_eq!(raw.prediction, sys::PS_PREDICTION_PER_FRAME);
         assert_eq!(raw.progressive_consistency_weight, 0.5);

@@ -50,6 +50,7 @@ mod animation;
 mod def;
 mod error;
 mod hierarchy;
+mod load;
 mod simulation;
 
 use std::cell::Cell;
@@ -67,6 +68,7 @@ pub use def::{
 };
 pub use error::{Error, Result, Status};
 pub use hierarchy::Hierarchy;
+pub use load::{Load, LoadDistribution};
 pub use simulation::Simulation;
 
 /// The C header version these bindings were generated from, packed as

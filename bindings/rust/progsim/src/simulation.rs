@@ -15,7 +15,7 @@ use crate::error::{check, check_thread};
 use crate::{
     c_handle, c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
     Axes, CallbackScope, Effect, Effects, Error, HandleMotion, HandleReaction, Hierarchy,
-    Interpolation, Keyframe, LevelStats, Mode, Result, SimulationDef, Status,
+    Interpolation, Keyframe, LevelStats, Load, Mode, Result, SimulationDef, Status,
 };
 
 /// A simulation of one [`Hierarchy`]: preview steps at the current level (starting at level
@@ -287,6 +287,37 @@ impl<'h> Simulation<'h> {
         self.check(status)?;
         // SAFETY: PS_OK, so the struct is filled.
         Ok(HandleReaction::from(unsafe { out.assume_init() }))
+    }
+
+    /// Number of point and line loads ([`add_load`](Self::add_load) and the scene's `"loads"`).
+    ///
+    /// # Panics
+    /// Inside a progress closure (the C library forbids calls from callbacks).
+    pub fn num_loads(&self) -> usize {
+        let raw = self.handle().unwrap_or_else(|error| panic!("{error}"));
+        let mut loads = 0;
+        // SAFETY: live simulation, valid out-pointer.
+        let status = unsafe { sys::ps_sim_num_loads(raw, &mut loads) };
+        self.check(status).expect("ps_sim_num_loads fails only on NULL arguments");
+        count_from(loads)
+    }
+
+    /// Adds a dead point or line load from the next step on (see [`Load`]); returns its index
+    /// (0, 1, ... in order of addition). Progressive simulations apply it on the finest level's
+    /// vertices, through the prolongation on coarse levels.
+    ///
+    /// # Errors
+    /// [`Status::InvalidScene`] naming the load and the problem: no vertices, a vertex or body
+    /// out of range, a non-finite value, a zero moment axis, a negative ramp, a group on one
+    /// line along the moment's axis. Nothing changes on error.
+    pub fn add_load(&mut self, load: &Load) -> Result<usize> {
+        let raw = self.handle()?;
+        let def = load.to_raw();
+        let mut index = 0;
+        // SAFETY: live simulation; def borrows load.vertices, alive for the call.
+        let status = unsafe { sys::ps_sim_add_load(raw, &def, &mut index) };
+        self.check(status)?;
+        Ok(count_from(index))
     }
 
     /// Advances `steps` steps of [`param("simulation.time_step")`](Self::param) seconds at
