@@ -258,6 +258,16 @@ typedef enum ps_prediction {
   PS_PREDICTION_FORCE32 = 0x7fffffff
 } ps_prediction;
 
+/** How keyframed motion (ps_sim_set_handle_keyframes()) moves between two keys, s ∈ [0, 1)
+ *  the time since the earlier key over the segment's duration; scene key
+ *  "motion.interpolation". */
+typedef enum ps_interpolation {
+  PS_INTERPOLATION_HOLD = 0,   /**< a step: the earlier key's pose until the next key's time */
+  PS_INTERPOLATION_LINEAR = 1, /**< uniformly in time (weight s) */
+  PS_INTERPOLATION_SMOOTH = 2, /**< smoothstep 3s² − 2s³: zero velocity at every key */
+  PS_INTERPOLATION_FORCE32 = 0x7fffffff
+} ps_interpolation;
+
 /** Physical effects; only enabled effects cost anything. Combine with |. */
 typedef enum ps_effect {
   PS_EFFECT_MEMBRANE = 1 << 0,     /**< Neo-Hookean membrane stretching */
@@ -532,8 +542,9 @@ PS_API int32_t ps_sim_num_handles(const ps_sim* sim, int32_t* out);
  * x(t) = c + R(ω t)(x̄ − c) + v t + offset, t the simulated time, x̄ the rest position,
  * R the rotation about unit `axis` through `center` (m) at `angular_velocity` (rad/s),
  * v = `velocity` (m/s) and `offset` (m) a translation a designer can drag. Any vector
- * argument is nullable (zero; axis defaults to +z). Errors: PS_ERROR_OUT_OF_RANGE (no such
- * handle), PS_ERROR_INVALID_ARGUMENT (a NaN/Inf value or a zero axis).
+ * argument is nullable (zero; axis defaults to +z). Replaces keyframes
+ * (ps_sim_set_handle_keyframes()). Errors: PS_ERROR_OUT_OF_RANGE (no such handle),
+ * PS_ERROR_INVALID_ARGUMENT (a NaN/Inf value or a zero axis).
  */
 PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const double velocity[3],
                                         const double axis[3], const double center[3],
@@ -574,6 +585,29 @@ typedef struct ps_handle_reaction {
  */
 PS_API int32_t ps_sim_get_handle_reaction(const ps_sim* sim, int32_t level, int32_t handle,
                                           ps_handle_reaction* out);
+
+/**
+ * Scripts handle `handle` by keyframes from the next step on, replacing its motion: its
+ * vertices follow x(t) = c + R(t)(x̄ − c) + T(t) + offset, t the simulated time (s), x̄ the rest
+ * position, c and offset the centre and offset of the handle's current motion (from
+ * ps_sim_set_handle_motion() or the scene; the origin and 0 by default), T(t) (m) and R(t)
+ * interpolated between the keys by `interpolation` (a ps_interpolation): translations
+ * componentwise; rotations about one axis (or with either angle 0) by their angle, so a segment may
+ * turn several times, about different axes by quaternion slerp (the shorter arc). Before the first
+ * key its pose, after the last held. The handle's velocity and angular velocity become 0 (keyframes
+ * replace them).
+ * @param rows      num_rows keys (num_rows × 8), row-major: time (s, strictly increasing),
+ *                  translation tx, ty, tz (m), rotation axis ax, ay, az (non-zero, need not be
+ *                  unit) and angle (rad, right-handed about the axis through c). Borrowed
+ *                  during the call.
+ * @param num_rows  at least 1.
+ * Errors: PS_ERROR_OUT_OF_RANGE (no such handle), PS_ERROR_NULL_ARGUMENT (rows),
+ * PS_ERROR_INVALID_ARGUMENT (num_rows = 0, not a ps_interpolation, a NaN/Inf value, a zero
+ * axis, times not strictly increasing: the message names the key, e.g.
+ * "handles[0].motion.keyframes[2].time"); on error the motion is unchanged.
+ */
+PS_API int32_t ps_sim_set_handle_keyframes(ps_sim* sim, int32_t handle, const double* rows,
+                                           size_t num_rows, int32_t interpolation);
 
 /**
  * Advances `steps` steps at the current level (the preview while it is not the finest).

@@ -1,6 +1,4 @@
 // ps_sim_*: creating simulations and changing their parameters between steps.
-#include <cmath>
-
 #include "handles.hpp"
 #include "scene/scene_json.hpp"
 #include "scene/scene_parameters.hpp"
@@ -71,6 +69,28 @@ void require_handle(const ps_sim& sim, int32_t handle) {
     api_fail(PS_ERROR_OUT_OF_RANGE, "handle " + std::to_string(handle) +
                                         " does not exist (the simulation has " + std::to_string(n) +
                                         " handles)");
+}
+
+/// Validates `motion` as an argument (the core's rules) and scripts handle `handle` with it.
+void set_motion(ps_sim& sim, int32_t handle, HandleMotion motion) {
+  validate_motion(motion, "handles[" + std::to_string(handle) + "].motion",
+                  Status::invalid_argument);
+  motion.axis.normalize();
+  edit_scene(sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });
+}
+
+Interpolation interpolation_from_enum(int32_t interpolation) {
+  switch (interpolation) {
+    case PS_INTERPOLATION_HOLD:
+      return Interpolation::hold;
+    case PS_INTERPOLATION_LINEAR:
+      return Interpolation::linear;
+    case PS_INTERPOLATION_SMOOTH:
+      return Interpolation::smooth;
+    default:
+      api_fail(PS_ERROR_INVALID_ARGUMENT,
+               "interpolation = " + std::to_string(interpolation) + " is not a ps_interpolation");
+  }
 }
 
 /// The reactions after the last solve on a level (empty before any, and on previews).
@@ -269,13 +289,27 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
     motion.center = vec3_or(center, Vec3::Zero());
     motion.angular_velocity = angular_velocity;
     motion.offset = vec3_or(offset, Vec3::Zero());
-    if (!motion.velocity.allFinite() || !motion.center.allFinite() || !motion.offset.allFinite() ||
-        !std::isfinite(angular_velocity))
-      api_fail(PS_ERROR_INVALID_ARGUMENT, "the motion has a non-finite value");
-    if (!(motion.axis.norm() > 0.0) || !motion.axis.allFinite())
-      api_fail(PS_ERROR_INVALID_ARGUMENT, "the rotation axis must be non-zero and finite");
-    motion.axis.normalize();
-    edit_scene(*sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });
+    set_motion(*sim, handle, motion);
+  });
+}
+
+PS_API int32_t ps_sim_set_handle_keyframes(ps_sim* sim, int32_t handle, const double* rows,
+                                           size_t num_rows, int32_t interpolation) {
+  return guarded(error_slot(sim), "ps_sim_set_handle_keyframes", [&] {
+    require_idle(sim);
+    require_handle(*sim, handle);
+    require(rows, "rows");
+    if (num_rows == 0) api_fail(PS_ERROR_INVALID_ARGUMENT, "num_rows = 0: give at least one key");
+    HandleMotion motion;
+    motion.center = sim->scene.handles[handle].motion.center;
+    motion.offset = sim->scene.handles[handle].motion.offset;
+    motion.interpolation = interpolation_from_enum(interpolation);
+    for (std::size_t k = 0; k < num_rows; ++k) {
+      const double* row = rows + 8 * k;  // time, tx, ty, tz, ax, ay, az, angle
+      motion.keyframes.push_back(
+          {row[0], Vec3(row[1], row[2], row[3]), Vec3(row[4], row[5], row[6]), row[7]});
+    }
+    set_motion(*sim, handle, motion);
   });
 }
 

@@ -12,20 +12,23 @@
 namespace progsim {
 
 Vec3 HandleMotion::position(const Vec3& rest, double t) const {
+  if (!keyframes.empty()) {
+    const RigidPose pose = keyframe_pose(keyframes, interpolation, t);  // c + R(t)(x̄ − c) + T(t)
+    return center + pose.rotation * (rest - center) + pose.translation + offset;
+  }
   const Eigen::AngleAxisd rotation(angular_velocity * t, axis);  // x(t) = c + R(ωt)(x̄ − c) + vt
   return center + rotation * (rest - center) + velocity * t + offset;
 }
 
+bool HandleMotion::moves() const {
+  return !velocity.isZero(0.0) || angular_velocity != 0.0 || keyframes.size() > 1;
+}
+
 Vec3 WindSettings::at(double t) const {
   if (keyframes.empty()) return velocity;
-  if (t <= keyframes.front().time) return keyframes.front().velocity;
-  for (std::size_t k = 1; k < keyframes.size(); ++k)
-    if (t < keyframes[k].time) {
-      const WindKeyframe &a = keyframes[k - 1], &b = keyframes[k];
-      const double s = (t - a.time) / (b.time - a.time);
-      return (1.0 - s) * a.velocity + s * b.velocity;
-    }
-  return keyframes.back().velocity;  // held after the last
+  const KeyBlend blend = key_blend(keyframes, t, Interpolation::linear);  // held outside
+  return (1.0 - blend.weight) * keyframes[blend.from].velocity +
+         blend.weight * keyframes[blend.to].velocity;
 }
 
 double ramp_factor(double t, double ramp) {
@@ -55,14 +58,6 @@ void validate_material(const ShellMaterial& m) {
                                     " must be 0 (no limit) or greater than 1");
 }
 
-void validate_motion(const HandleMotion& m, const std::string& where) {
-  if (!m.velocity.allFinite() || !m.center.allFinite() || !m.offset.allFinite() ||
-      !m.axis.allFinite() || !std::isfinite(m.angular_velocity))
-    fail(Status::invalid_scene, where + ": motion has a non-finite value");
-  if (m.angular_velocity != 0.0 && !(m.axis.norm() > 0.0))
-    fail(Status::invalid_scene, where + ": rotation axis must be non-zero");
-}
-
 /// Obstacles, ground and contact settings; collision objects need the contact effect.
 void validate_contact(const Scene& scene) {
   check("contact", "dhat", scene.contact.dhat);
@@ -80,7 +75,7 @@ void validate_contact(const Scene& scene) {
     const Obstacle& o = scene.obstacles[k];
     const std::string where = "obstacles[" + std::to_string(k) + "]";
     validate_mesh(o.mesh, o.name.empty() ? where : o.name);
-    validate_motion(o.motion, where);
+    validate_motion(o.motion, where + ".motion");
     check("material", "friction", o.friction);
   }
   const Ground& g = scene.ground;
@@ -106,7 +101,7 @@ void validate_handle(const Scene& scene, std::size_t h) {
   const Handle& handle = scene.handles[h];
   const std::string where = "handles[" + std::to_string(h) + "]";
   validate_group(scene, handle.body, handle.vertices, where);
-  validate_motion(handle.motion, where);
+  validate_motion(handle.motion, where + ".motion");
   if (handle.axes == 0 || (handle.axes & ~unsigned{handle_axes_all}) != 0)
     fail(Status::invalid_scene, where + ": axes " + std::to_string(handle.axes) +
                                     " must be a non-empty set of x (1), y (2), z (4)");
@@ -225,6 +220,16 @@ void validate_held(const Scene& scene) {
 }
 
 }  // namespace
+
+void validate_motion(const HandleMotion& m, const std::string& where, Status status) {
+  if (!m.velocity.allFinite() || !m.center.allFinite() || !m.offset.allFinite() ||
+      !m.axis.allFinite() || !std::isfinite(m.angular_velocity))
+    fail(status, where + " has a non-finite value");
+  if (!(m.axis.norm() > 0.0)) fail(status, where + ".axis: the rotation axis must be non-zero");
+  validate_keyframes(m.keyframes, where, status);
+  if (!m.keyframes.empty() && (!m.velocity.isZero(0.0) || m.angular_velocity != 0.0))
+    fail(status, where + ": give either keyframes or a velocity and angular velocity, not both");
+}
 
 void validate_scene(const Scene& scene) {
   check("simulation", "time_step", scene.time_step);

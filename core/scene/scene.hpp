@@ -7,6 +7,7 @@
 #include "energy/shell_material.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "scene/effects.hpp"
+#include "scene/keyframes.hpp"
 #include "solve/newton_solver.hpp"
 
 namespace progsim {
@@ -27,17 +28,24 @@ struct Body {
   Vec3 velocity = Vec3::Zero();  ///< m/s, initial velocity of every vertex (dynamic scenes)
 };
 
-/// Rigid motion of a handle: x(t) = c + R(ω t)(x₀ − c) + v t + offset, with R a rotation
-/// about `axis` through centre c.
+/// Rigid motion of a handle or an obstacle: x(t) = c + R(ω t)(x₀ − c) + v t + offset, with R a
+/// rotation about `axis` through centre c; or, keyframed, x(t) = c + R(t)(x₀ − c) + T(t) +
+/// offset with the pose (R, T) interpolated between keyframes (keyframe_pose()).
 struct HandleMotion {
   Vec3 velocity = Vec3::Zero();   ///< m/s
   Vec3 axis = Vec3::UnitZ();      ///< unit rotation axis
   Vec3 center = Vec3::Zero();     ///< m
   double angular_velocity = 0.0;  ///< rad/s
   Vec3 offset = Vec3::Zero();     ///< m, a translation a designer drags between steps
+  /// Poses at increasing times, the first held before it and the last after it; non-empty
+  /// excludes `velocity` and `angular_velocity` (validate_motion()).
+  std::vector<MotionKeyframe> keyframes;
+  Interpolation interpolation = Interpolation::linear;  ///< between keyframes
 
   /// Where a point whose rest position is `rest` (m) is at time t (s).
   Vec3 position(const Vec3& rest, double t) const;
+  /// Whether the motion changes with time (a velocity, an angular velocity or two keyframes).
+  bool moves() const;
 };
 
 /// A collision object: a triangle mesh on a rigid script, not simulated (C-IPC codimensional
@@ -238,6 +246,12 @@ struct Scene {
 /// The fraction of a ramped load acting at time t (s): min(1, t / ramp), 1 for ramp = 0
 /// (Body::pressure_ramp, Load::ramp, Scene::gravity_ramp).
 double ramp_factor(double t, double ramp);
+
+/// Checks a motion: finite values, a non-zero rotation axis, valid keyframes
+/// (validate_keyframes()) and not both keyframes and a velocity or an angular velocity. Throws
+/// Error(status) naming `where` (the motion's path, e.g. "handles[0].motion").
+void validate_motion(const HandleMotion& motion, const std::string& where,
+                     Status status = Status::invalid_scene);
 
 /// Checks a scene built in code (the JSON parser calls it too): ranges of every parameter,
 /// valid meshes, handle indices in range. Throws Error(invalid_scene / invalid_mesh).

@@ -213,9 +213,47 @@ std::vector<int> box_selection(const Json& j, const Positions& p, const std::str
   return selected;
 }
 
+template <typename Enum>
+Enum choice(const Json& j, const std::string& key, const std::string& where,
+            std::initializer_list<std::pair<const char*, Enum>> known);
+
+MotionKeyframe motion_keyframe(const Json& j, const std::string& where) {
+  expect_keys(j, where, {"time", "translation", "axis", "angle"});
+  MotionKeyframe key;
+  key.time = number(require(j, "time", where), where + ".time");
+  key.translation = vec3_or(j, "translation", key.translation, where);
+  key.axis = vec3_or(j, "axis", key.axis, where);
+  key.angle = number_or(j, "angle", key.angle, where);
+  return key;  // times, axes: validate_motion()
+}
+
+/// A motion's "keyframes" and "interpolation", exclusive with its velocities and axis.
+void motion_keyframes(const Json& j, const std::string& where, HandleMotion& m) {
+  for (const char* rate : {"velocity", "angular_velocity", "axis"})
+    if (j.contains(rate))
+      scene_error(where, std::string("give either 'keyframes' or '") + rate + "', not both");
+  const Json& keys = j.at("keyframes");
+  if (!keys.is_array() || keys.empty())
+    scene_error(where + ".keyframes",
+                "must be a non-empty array of {\"time\", \"translation\", \"axis\", \"angle\"}");
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    m.keyframes.push_back(
+        motion_keyframe(keys[k], where + ".keyframes[" + std::to_string(k) + "]"));
+  m.interpolation = choice<Interpolation>(j, "interpolation", where,
+                                          {{"linear", Interpolation::linear},
+                                           {"hold", Interpolation::hold},
+                                           {"smooth", Interpolation::smooth}});
+}
+
 HandleMotion motion(const Json& j, const std::string& where) {
-  expect_keys(j, where, {"velocity", "axis", "center", "angular_velocity", "offset"});
+  expect_keys(
+      j, where,
+      {"velocity", "axis", "center", "angular_velocity", "offset", "keyframes", "interpolation"});
   HandleMotion m;
+  if (j.contains("keyframes"))
+    motion_keyframes(j, where, m);
+  else if (j.contains("interpolation"))
+    scene_error(where + ".interpolation", "needs 'keyframes' to interpolate between");
   m.velocity = vec3_or(j, "velocity", Vec3::Zero(), where);
   m.axis = vec3_or(j, "axis", Vec3::UnitZ(), where);
   m.center = vec3_or(j, "center", Vec3::Zero(), where);

@@ -15,6 +15,7 @@
 #include "mesh/intersection_check.hpp"
 #include "sim/contact_setup.hpp"
 #include "sim/handle_reactions.hpp"
+#include "sim/handle_step_bound.hpp"
 #include "sim/load_forces.hpp"
 #include "sim/obstacle_script.hpp"
 #include "sim/shell_elastics.hpp"
@@ -31,6 +32,12 @@ Scene validated(Scene scene) {
 
 /// Rounds of CCD-safe scripted motion (each followed by a solve) before a step gives up.
 constexpr int kMaxScriptRounds = 50;
+
+/// A round of scripted handle motion leaves every face next to a handle at least this fraction
+/// of its area (max_handle_step()): a handle moved about an edge length in one step would
+/// otherwise land on its free neighbours, collapsing the faces between them (a non-finite
+/// membrane energy), before the solve could move them aside.
+constexpr double kKeptArea = 0.5;
 
 /// A scripted step shorter than this fraction ends the rounds: the contact bounding it is
 /// better resolved by the step's own solve than by many solves that each gain little.
@@ -250,33 +257,25 @@ void LevelSimulation::apply_ramps(double t) {
 }
 
 double LevelSimulation::advance_scripts(double t, double decrement_scale, NewtonReport& report) {
-  if (!contact_) {
-    handles_.apply(t, x_);
-    fit_limits_to_prescribed_motion();
-    return 1.0;
-  }
   script_target_ = x_;
   handles_.apply(t, script_target_);
-  const Positions obstacle_target = obstacles_->at(t);
+  const Positions obstacle_target = obstacles_->at(t);  // empty without contact
   double reached = 0.0;
   for (int round = 0; round < kMaxScriptRounds; ++round) {
     script_step_ = script_target_ - x_;  // handles only: the solve moves the free DOFs
     for (int d = 0; d < problem_->num_dofs(); ++d)
       if (!problem_->is_fixed(d)) script_step_[d] = 0.0;
-    const Positions obstacles_now = contact_->obstacle_positions();
+    const Positions obstacles_now = obstacle_positions();
     if (script_step_.isZero(0.0) && obstacles_now == obstacle_target) return 1.0;
-    double alpha = contact_->max_scripted_step(x_, script_step_, obstacle_target);
-    if (alpha < 1.0 && carry_shell(obstacle_target))
-      alpha = contact_->max_scripted_step(x_, script_step_, obstacle_target);
+    const double alpha = max_script_step(obstacle_target);
     if (alpha >= 1.0) {
-      x_ += script_step_;
-      contact_->set_obstacle_positions(obstacle_target);
-      fit_limits_to_prescribed_motion();
+      finish_scripts(t, obstacle_target);
       return 1.0;
     }
     if (alpha < kStalledScriptStep) break;
     x_ += alpha * script_step_;
-    contact_->set_obstacle_positions(obstacles_now + alpha * (obstacle_target - obstacles_now));
+    if (contact_)
+      contact_->set_obstacle_positions(obstacles_now + alpha * (obstacle_target - obstacles_now));
     reached += alpha * (1.0 - reached);
     fit_limits_to_prescribed_motion();
     const NewtonReport round_solve =
@@ -289,6 +288,26 @@ double LevelSimulation::advance_scripts(double t, double decrement_scale, Newton
     if (round_solve.iterations == 0 || round_solve.stop == NewtonStop::interrupted) break;
   }
   return reached;
+}
+
+double LevelSimulation::max_script_step(const Positions& obstacle_target) {
+  double alpha = 1.0;
+  if (contact_) {
+    alpha = contact_->max_scripted_step(x_, script_step_, obstacle_target);
+    if (alpha < 1.0 && carry_shell(obstacle_target))
+      alpha = contact_->max_scripted_step(x_, script_step_, obstacle_target);
+  }
+  return std::min(alpha, max_handle_step(model_.rest.faces, x_, script_step_, kKeptArea));
+}
+
+void LevelSimulation::finish_scripts(double t, const Positions& obstacle_target) {
+  if (contact_) {
+    x_ += script_step_;  // with the shell vertices the obstacles carry
+    contact_->set_obstacle_positions(obstacle_target);
+  } else {
+    handles_.apply(t, x_);  // exactly at their targets
+  }
+  fit_limits_to_prescribed_motion();
 }
 
 bool LevelSimulation::carry_shell(const Positions& obstacle_target) {

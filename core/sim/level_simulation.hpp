@@ -164,9 +164,15 @@ class LevelSimulation {
   /// After a solve from a fitted start: offsets and strain limits moved back toward their own
   /// values, what is still fitted counted in `record`.
   void restore_fitted(StepRecord& record);
-  /// Moves handles and obstacles toward their scripts at time t, in CCD-safe rounds with a
-  /// Newton solve between rounds when contact stops them; returns the fraction reached.
+  /// Moves handles and obstacles toward their scripts at time t, in rounds with a Newton solve
+  /// between them when contact (CCD) or a face next to a handle (max_handle_step()) stops
+  /// them; returns the fraction reached.
   double advance_scripts(double t, double decrement_scale, NewtonReport& report);
+  /// The fraction of script_step_ (and of the obstacles' way to `obstacle_target`) the next
+  /// round may take; with contact may add carried shell motion to script_step_.
+  double max_script_step(const Positions& obstacle_target);
+  /// Completes the scripted motion: handles at their targets at time t, obstacles at theirs.
+  void finish_scripts(double t, const Positions& obstacle_target);
   /// Adds to script_step_ the motion of the free shell vertices that moving obstacles touch
   /// (ContactPotential::carried_motion); returns whether any vertex is carried.
   bool carry_shell(const Positions& obstacle_target);

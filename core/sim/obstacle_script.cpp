@@ -3,10 +3,7 @@
 namespace progsim {
 
 ObstacleScript::ObstacleScript(const Scene& scene) : obstacles_(scene.obstacles) {
-  for (const Obstacle& o : obstacles_) {
-    const HandleMotion& m = o.motion;
-    moves_ = moves_ || !m.velocity.isZero(0.0) || m.angular_velocity != 0.0;
-  }
+  for (const Obstacle& o : obstacles_) moves_ = moves_ || o.motion.moves();
 }
 
 Positions ObstacleScript::at(double t) const {

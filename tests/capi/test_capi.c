@@ -341,6 +341,75 @@ static void test_scene_file(void) {
   ps_sim_destroy(sim);
 }
 
+/* A quasistatic 1 m sheet (4 × 4 quads) whose handle 0 holds its left edge, with `motion` as
+ * the handle's JSON motion. */
+static ps_sim* keyframed_sheet(const char* motion) {
+  char json[1024];
+  snprintf(json, sizeof json,
+           "{\"simulation\": {\"mode\": \"quasistatic\", \"time_step\": 0.1},"
+           " \"effects\": [\"membrane\", \"bending\"], \"bodies\": [{\"mesh\": {\"generator\":"
+           " \"grid\", \"width\": 1, \"height\": 1, \"nx\": 4, \"ny\": 4}}],"
+           " \"handles\": [{\"body\": 0, \"vertices\": [0, 5, 10, 15, 20], \"motion\": %s}]}",
+           motion);
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create_from_scene(json, NULL, &sim) == PS_OK);
+  return sim;
+}
+
+/* Keyframes through the C ABI: each key's pose at its time, the same steps bit for bit as the
+ * scene's "keyframes", and bad keys refused naming the key with the motion unchanged. */
+static void test_handle_keyframes(void) {
+  /* rows: time, tx, ty, tz, ax, ay, az, angle; a quarter turn about z through c = (0, 0.5, 0) */
+  const double rows[3 * 8] = {0.0, 0, 0, 0, 0, 0, 1, 0,   0.2, 0, 0, 0.1, 0, 0, 1, 0,
+                              0.4, 0, 0, 0.1, 0, 0, 1, 1.5707963267948966};
+  ps_sim* coded = keyframed_sheet("{\"center\": [0, 0.5, 0]}");
+  ps_sim* read = keyframed_sheet(
+      "{\"center\": [0, 0.5, 0], \"interpolation\": \"smooth\", \"keyframes\": ["
+      "{\"time\": 0}, {\"time\": 0.2, \"translation\": [0, 0, 0.1]}, {\"time\": 0.4, "
+      "\"translation\": [0, 0, 0.1], \"angle\": 1.5707963267948966}]}");
+  if (!coded || !read) return;
+  CHECK(ps_sim_set_handle_keyframes(coded, 0, rows, 3, PS_INTERPOLATION_SMOOTH) == PS_OK);
+  double a[3 * 25], b[3 * 25];
+  size_t count = 0;
+  for (int step = 1; step <= 5; ++step) {
+    CHECK(ps_sim_step_preview(coded, 1) == PS_OK && ps_sim_step_preview(read, 1) == PS_OK);
+    CHECK(ps_sim_get_positions(coded, 0, a, 75, &count) == PS_OK && count == 75);
+    CHECK(ps_sim_get_positions(read, 0, b, 75, &count) == PS_OK);
+    CHECK(memcmp(a, b, sizeof a) == 0); /* the scene's keyframes, bit for bit */
+    if (step == 2) /* key 1: vertex 20 (0, 1, 0) lifted by 0.1 */
+      CHECK(fabs(a[60]) < 1e-12 && fabs(a[61] - 1.0) < 1e-12 && fabs(a[62] - 0.1) < 1e-12);
+    if (step >= 4) /* key 2 and after: turned a quarter about z through (0, 0.5, 0) */
+      CHECK(fabs(a[60] + 0.5) < 1e-12 && fabs(a[61] - 0.5) < 1e-12 && fabs(a[62] - 0.1) < 1e-12);
+  }
+
+  const double late[2 * 8] = {0.5, 0, 0, 0, 0, 0, 1, 0, 0.5, 0, 0, 0, 0, 0, 1, 0};
+  CHECK_ERROR(ps_sim_set_handle_keyframes(coded, 0, late, 2, PS_INTERPOLATION_LINEAR),
+              PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(coded),
+              "handles[0].motion.keyframes[1].time");
+  double bad[8] = {0.0, 0, 0, 0, 0, 0, 0, 0}; /* zero axis */
+  CHECK_ERROR(ps_sim_set_handle_keyframes(coded, 0, bad, 1, PS_INTERPOLATION_LINEAR),
+              PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(coded), "keyframes[0].axis");
+  bad[6] = 1.0;
+  bad[1] = NAN;
+  CHECK_ERROR(ps_sim_set_handle_keyframes(coded, 0, bad, 1, PS_INTERPOLATION_LINEAR),
+              PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(coded), "keyframes[0].translation");
+  CHECK_ERROR(ps_sim_set_handle_keyframes(coded, 0, rows, 3, 7), PS_ERROR_INVALID_ARGUMENT,
+              ps_sim_last_error(coded), "not a ps_interpolation");
+  CHECK_ERROR(ps_sim_set_handle_keyframes(coded, 0, rows, 0, PS_INTERPOLATION_LINEAR),
+              PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(coded), "num_rows = 0");
+  CHECK_ERROR(ps_sim_set_handle_keyframes(coded, 0, NULL, 3, PS_INTERPOLATION_LINEAR),
+              PS_ERROR_NULL_ARGUMENT, ps_sim_last_error(coded), "rows");
+  CHECK_ERROR(ps_sim_set_handle_keyframes(coded, 1, rows, 3, PS_INTERPOLATION_LINEAR),
+              PS_ERROR_OUT_OF_RANGE, ps_sim_last_error(coded), "handle 1 does not exist");
+  /* refused calls changed nothing: both still step alike */
+  CHECK(ps_sim_step_preview(coded, 1) == PS_OK && ps_sim_step_preview(read, 1) == PS_OK);
+  CHECK(ps_sim_get_positions(coded, 0, a, 75, &count) == PS_OK);
+  CHECK(ps_sim_get_positions(read, 0, b, 75, &count) == PS_OK);
+  CHECK(memcmp(a, b, sizeof a) == 0);
+  ps_sim_destroy(coded);
+  ps_sim_destroy(read);
+}
+
 /* Counts progress reports; cancels once `cancel_at` percent is reached (if positive). */
 static int32_t count_reports(void* user_data, int32_t done, int32_t total, const char* phase) {
   int32_t* state = (int32_t*)user_data; /* [reports, cancel_at] */
@@ -763,6 +832,7 @@ int main(int argc, char** argv) {
   test_misuse();
   test_parameter_listing_mode_and_lifetimes();
   test_scene_file();
+  test_handle_keyframes();
   test_levels();
   test_progressive();
   test_crossing_input();

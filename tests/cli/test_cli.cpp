@@ -321,14 +321,14 @@ void expect_summary_written_last(const fs::path& out) {
 }  // namespace
 
 TEST_F(Cli, RunWithANonFiniteStepFailsExits3AndStopsThere) {
-  // A single handle vertex moved one edge length in the first load step lands on its
-  // neighbour: the faces between them collapse and the solve ends 'non_finite'.
-  const fs::path scene = write("jerk.json", R"({ "name": "jerk",
+  // A gravity of 1e300 m/s² overflows the first load step's potential energy: its solve ends
+  // 'non_finite'.
+  const fs::path scene = write("overflow.json", R"({ "name": "overflow",
     "simulation": {"mode": "quasistatic", "time_step": 1, "duration": 3},
-    "effects": ["membrane", "bending"],
+    "effects": ["membrane", "bending", "gravity"], "gravity": [0, 0, -1e300],
     "bodies": [{"name": "sheet", "mesh": )" + std::string(kGrid) +
-                                                R"(}],
-    "handles": [{"body": 0, "vertices": [0], "motion": {"velocity": [0.25, 0, 0]}}] })");
+                                                    R"(}],
+    "handles": [{"body": 0, "vertices": [0, 5, 10, 15, 20]}] })");
   const fs::path out = dir_ / "out";
   const CommandResult r = run_cli("run " + scene.string() + " --out " + out.string() + " --quiet");
   EXPECT_EQ(r.exit_code, 3) << r.output;
@@ -341,6 +341,22 @@ TEST_F(Cli, RunWithANonFiniteStepFailsExits3AndStopsThere) {
   EXPECT_EQ(summary.at("steps").get<int>(), 1);  // nothing after the failed step
   EXPECT_TRUE(fs::exists(out / "frame_00000.obj"));
   EXPECT_FALSE(fs::exists(out / "frame_00001.obj"));
+}
+
+TEST_F(Cli, RunWithAHandleJumpingAnEdgeLengthPerStepSucceeds) {
+  // A single handle vertex moved one edge length per load step would land on its neighbour
+  // (the faces between them collapsed, the solve ended 'non_finite'): it moves in rounds.
+  const fs::path scene = write("jerk.json", R"({ "name": "jerk",
+    "simulation": {"mode": "quasistatic", "time_step": 1, "duration": 3},
+    "effects": ["membrane", "bending"],
+    "bodies": [{"name": "sheet", "mesh": )" + std::string(kGrid) +
+                                                R"(}],
+    "handles": [{"body": 0, "vertices": [0], "motion": {"velocity": [0.25, 0, 0]}}] })");
+  const fs::path out = dir_ / "out";
+  const CommandResult r = run_cli("run " + scene.string() + " --out " + out.string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_summary(out).at("status"), "ok");
+  EXPECT_TRUE(fs::exists(out / "frame_00003.obj"));
 }
 
 TEST_F(Cli, RunRefusesAFreeQuasistaticBodyUpFront) {

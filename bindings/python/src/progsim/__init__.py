@@ -56,6 +56,7 @@ from .accuracy import Accuracy, AccuracyRow  # noqa: E402 - after the version ch
 from .hierarchy import Hierarchy  # noqa: E402
 from .simulation import (  # noqa: E402
     EFFECTS,
+    INTERPOLATIONS,
     KINDS,
     LOAD_DISTRIBUTIONS,
     MODES,
@@ -95,6 +96,7 @@ __all__ = [
     "HandleReaction",
     "STEP_STATS_DTYPE",
     "EFFECTS",
+    "INTERPOLATIONS",
     "KINDS",
     "LOAD_DISTRIBUTIONS",
     "MODES",

@@ -49,6 +49,7 @@ __all__ = [
     "EFFECTS",
     "MODES",
     "PREDICTIONS",
+    "INTERPOLATIONS",
     "KINDS",
     "PARAMETERS",
 ]
@@ -78,6 +79,14 @@ PREDICTIONS: Dict[str, int] = {
     "velocity_only": lib.PS_PREDICTION_VELOCITY_ONLY,
     "prolonged_positions": lib.PS_PREDICTION_PROLONGED_POSITIONS,
     "per_frame": lib.PS_PREDICTION_PER_FRAME,
+}
+
+#: Interpolations of keyframed motion (``ps_interpolation``): ``hold`` (a step), ``linear``,
+#: ``smooth`` (smoothstep 3s² − 2s³, zero velocity at every key).
+INTERPOLATIONS: Dict[str, int] = {
+    "hold": lib.PS_INTERPOLATION_HOLD,
+    "linear": lib.PS_INTERPOLATION_LINEAR,
+    "smooth": lib.PS_INTERPOLATION_SMOOTH,
 }
 
 #: What drives a simulation (``ps_sim_kind``): one level is ``direct``; several levels are
@@ -314,18 +323,44 @@ def _effect_bits(effects: Union[str, Iterable[str]]) -> int:
     return bits
 
 
-def _wind_keyframes(value: Any) -> np.ndarray:
-    """Wind keyframes as a C-contiguous float64 (k, 4) array: time, wx, wy, wz."""
+def _real_rows(value: Any, name: str, shape: Tuple[int, ...], layout: str) -> np.ndarray:
+    """``value`` as a C-contiguous float64 array of shape (k, *shape) with k >= 1.
+
+    ``layout`` names the columns for the error message.
+    """
     try:
         array = np.ascontiguousarray(value, dtype=np.float64)
     except (TypeError, ValueError):
-        raise InvalidArgumentError(f"wind_keyframes must be real numbers, got {value!r}") from None
-    if array.ndim != 2 or array.shape[1] != 4 or array.shape[0] == 0:
+        raise InvalidArgumentError(f"{name} must be real numbers, got {value!r}") from None
+    if array.shape[1:] != shape or array.ndim != len(shape) + 1 or array.shape[0] == 0:
+        wanted = ", ".join(["k"] + [str(n) for n in shape])
         raise InvalidArgumentError(
-            "wind_keyframes must have shape (k, 4) with k >= 1 (time, wx, wy, wz), "
-            f"got {array.shape}"
+            f"{name} must have shape ({wanted}) with k >= 1 ({layout}), got {array.shape}"
         )
     return array
+
+
+def _wind_keyframes(value: Any) -> np.ndarray:
+    """Wind keyframes as a C-contiguous float64 (k, 4) array: time, wx, wy, wz."""
+    return _real_rows(value, "wind_keyframes", (4,), "time, wx, wy, wz")
+
+
+def _keyframe_rows(
+    times: Any, translations: Any, axes: Optional[Any], angles: Optional[Any]
+) -> np.ndarray:
+    """Motion keyframes as the C-contiguous (k, 8) rows of ps_sim_set_handle_keyframes()."""
+    time = _real_rows(times, "times", (), "one time per key, s")
+    count = time.shape[0]
+    translation = _real_rows(translations, "translations", (3,), "tx, ty, tz per key, m")
+    axis = np.tile([0.0, 0.0, 1.0], (count, 1)) if axes is None else axes
+    axis = _real_rows(axis, "axes", (3,), "ax, ay, az per key")
+    angle = _real_rows(np.zeros(count) if angles is None else angles, "angles", (), "rad per key")
+    for name, array in (("translations", translation), ("axes", axis), ("angles", angle)):
+        if array.shape[0] != count:
+            raise InvalidArgumentError(
+                f"{name} has {array.shape[0]} keys, times has {count}: give one per key"
+            )
+    return np.ascontiguousarray(np.column_stack([time, translation, axis, angle]))
 
 
 def _parameter_name(name: str) -> bytes:
@@ -751,7 +786,7 @@ class Simulation(NativeObject):
         """Scripts handle ``handle`` from the next step on.
 
         Its vertices follow x(t) = c + R(ω t)(x̄ − c) + v t + offset, with t the simulated
-        time and x̄ the rest position.
+        time and x̄ the rest position. Replaces keyframes (:meth:`set_handle_keyframes`).
 
         Args:
             handle: handle index, ``0 <= handle < num_handles``.
@@ -773,6 +808,51 @@ class Simulation(NativeObject):
             vec3(center, "center"),
             real_value(angular_velocity, "angular_velocity"),
             vec3(offset, "offset"),
+        )
+
+    def set_handle_keyframes(
+        self,
+        handle: int,
+        times: Any,
+        translations: Any,
+        axes: Optional[Any] = None,
+        angles: Optional[Any] = None,
+        interpolation: str = "linear",
+    ) -> None:
+        """Scripts handle ``handle`` by keyframes from the next step on.
+
+        Its vertices follow x(t) = c + R(t)(x̄ − c) + T(t) + offset, with t the simulated time,
+        x̄ the rest position, c and offset those of the handle's current motion
+        (:meth:`set_handle_motion` or the scene's), and the pose (T, R) interpolated between
+        the keys: translations componentwise; rotations about one axis by their angle (a
+        segment may turn several times), about different axes by quaternion slerp. Before
+        the first key its pose, after the last held. Replaces the velocity and angular
+        velocity.
+
+        Args:
+            handle: handle index, ``0 <= handle < num_handles``.
+            times: key times, s, shape (k,), strictly increasing, k >= 1.
+            translations: T at each key, m, shape (k, 3).
+            axes: rotation axis at each key (non-zero, need not be unit), shape (k, 3);
+                default +z.
+            angles: rotation about the axis through c at each key, rad, shape (k,);
+                default 0.
+            interpolation: an :data:`INTERPOLATIONS` name: ``"hold"``, ``"linear"``
+                (default) or ``"smooth"``.
+
+        Raises:
+            OutOfRangeError: no such handle.
+            InvalidArgumentError: arrays of the wrong shape or with NaN/Inf, a zero axis,
+                times not strictly increasing (the message names the key), an unknown
+                interpolation.
+        """
+        rows = _keyframe_rows(times, translations, axes, angles)
+        self._call(
+            lib.ps_sim_set_handle_keyframes,
+            int32_value(handle, "handle"),
+            ffi.from_buffer("double[]", rows),
+            rows.shape[0],
+            _choice(INTERPOLATIONS, interpolation, "interpolation"),
         )
 
     def set_handle_axes(self, handle: int, axes: str) -> None:

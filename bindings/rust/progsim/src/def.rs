@@ -482,6 +482,60 @@ impl Default for HandleMotion {
     }
 }
 
+/// One key of keyframed handle motion ([`Simulation::set_handle_keyframes`]): the pose at
+/// `time`, x = c + R(x̄ − c) + T + offset with R the rotation by `angle` about `axis` through the
+/// handle motion's centre c.
+///
+/// [`Simulation::set_handle_keyframes`]: crate::Simulation::set_handle_keyframes
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Keyframe {
+    /// s; strictly increasing from key to key.
+    pub time: f64,
+    /// T, m; default zero.
+    pub translation: [f64; 3],
+    /// Rotation axis (any non-zero length); default +z.
+    pub axis: [f64; 3],
+    /// Rotation about `axis`, rad (right-handed); default 0.
+    pub angle: f64,
+}
+
+impl Default for Keyframe {
+    fn default() -> Keyframe {
+        Keyframe { time: 0.0, translation: [0.0; 3], axis: [0.0, 0.0, 1.0], angle: 0.0 }
+    }
+}
+
+impl Keyframe {
+    /// The row (time, tx, ty, tz, ax, ay, az, angle) of `ps_sim_set_handle_keyframes`.
+    pub(crate) fn row(&self) -> [f64; 8] {
+        let [tx, ty, tz] = self.translation;
+        let [ax, ay, az] = self.axis;
+        [self.time, tx, ty, tz, ax, ay, az, self.angle]
+    }
+}
+
+/// How keyframed motion moves between two keys (s ∈ [0, 1) the segment's parameter).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Interpolation {
+    /// A step: the earlier key's pose until the next key (`PS_INTERPOLATION_HOLD`).
+    Hold,
+    /// Uniformly in time (`PS_INTERPOLATION_LINEAR`, the default).
+    #[default]
+    Linear,
+    /// Smoothstep 3s² − 2s³: zero velocity at every key (`PS_INTERPOLATION_SMOOTH`).
+    Smooth,
+}
+
+impl Interpolation {
+    pub(crate) fn to_raw(self) -> sys::ps_interpolation {
+        match self {
+            Interpolation::Hold => sys::PS_INTERPOLATION_HOLD,
+            Interpolation::Linear => sys::PS_INTERPOLATION_LINEAR,
+            Interpolation::Smooth => sys::PS_INTERPOLATION_SMOOTH,
+        }
+    }
+}
+
 /// The world coordinates a handle prescribes (the C `ps_axis` bits); the others are free: a
 /// roller or a symmetry plane. Scene key `handles[i].axes`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -63,8 +63,8 @@ use progsim_sys as sys;
 pub use accuracy::{Accuracy, AccuracyDef, AccuracyRow, Method};
 pub use animation::{DynamicLevelStats, Frame, Prediction, SimulationKind, StepStats};
 pub use def::{
-    Axes, Effect, Effects, HandleMotion, HandleReaction, HierarchyDef, LevelStats, Mode,
-    RefinementStats, SimulationDef, StrainCorrectionStats,
+    Axes, Effect, Effects, HandleMotion, HandleReaction, HierarchyDef, Interpolation, Keyframe,
+    LevelStats, Mode, RefinementStats, SimulationDef, StrainCorrectionStats,
 };
 pub use error::{Error, Result, Status};
 pub use hierarchy::Hierarchy;

@@ -13,9 +13,9 @@ use progsim_sys as sys;
 
 use crate::error::{check, check_thread};
 use crate::{
-    c_handle, c_level, c_path, c_string, check_version, count_from, not_in_callback,
-    read_triples, Axes, CallbackScope, Effect, Effects, Error, HandleMotion, HandleReaction,
-    Hierarchy, LevelStats, Load, Mode, Result, SimulationDef, Status,
+    c_handle, c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
+    Axes, CallbackScope, Effect, Effects, Error, HandleMotion, HandleReaction, Hierarchy,
+    Interpolation, Keyframe, LevelStats, Load, Mode, Result, SimulationDef, Status,
 };
 
 /// A simulation of one [`Hierarchy`]: preview steps at the current level (starting at level
@@ -199,7 +199,8 @@ impl<'h> Simulation<'h> {
     }
 
     /// Scripts handle `handle` (0 ≤ handle < [`num_handles`](Self::num_handles)) from the
-    /// next step on; see [`HandleMotion`].
+    /// next step on; see [`HandleMotion`]. Replaces keyframes
+    /// ([`set_handle_keyframes`](Self::set_handle_keyframes)).
     ///
     /// # Errors
     /// [`Status::OutOfRange`] if the handle does not exist; [`Status::InvalidArgument`] for a
@@ -217,6 +218,38 @@ impl<'h> Simulation<'h> {
                 motion.center.as_ptr(),
                 motion.angular_velocity,
                 motion.offset.as_ptr(),
+            )
+        };
+        self.check(status)
+    }
+
+    /// Scripts handle `handle` by keyframes from the next step on, interpolated by
+    /// `interpolation`: x(t) = c + R(t)(x̄ − c) + T(t) + offset with c and offset those of the
+    /// handle's current motion; translations blend componentwise, rotations about one axis by
+    /// their angle (a segment may turn several times), about different axes by slerp. Before
+    /// the first key its pose, after the last held. Replaces the velocity and angular velocity.
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the handle does not exist; [`Status::InvalidArgument`] for no
+    /// keys, a NaN/Inf value, a zero axis or times not strictly increasing (the message names
+    /// the key). On error the motion is unchanged.
+    pub fn set_handle_keyframes(
+        &mut self,
+        handle: usize,
+        keys: &[Keyframe],
+        interpolation: Interpolation,
+    ) -> Result<()> {
+        let raw = self.handle()?;
+        let handle = c_handle(handle)?;
+        let rows: Vec<[f64; 8]> = keys.iter().map(Keyframe::row).collect();
+        // SAFETY: live simulation; `rows` holds keys.len() rows of 8 doubles alive for the call.
+        let status = unsafe {
+            sys::ps_sim_set_handle_keyframes(
+                raw,
+                handle,
+                rows.as_ptr().cast::<f64>(),
+                rows.len(),
+                interpolation.to_raw() as i32,
             )
         };
         self.check(status)
@@ -254,6 +287,7 @@ impl<'h> Simulation<'h> {
         self.check(status)?;
         // SAFETY: PS_OK, so the struct is filled.
         Ok(HandleReaction::from(unsafe { out.assume_init() }))
+    }
 
     /// Number of point and line loads ([`add_load`](Self::add_load) and the scene's `"loads"`).
     ///
