@@ -13,6 +13,7 @@
 #include "mesh/mesh_topology.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "support/energy_checks.hpp"
+#include "support/rolled_sheets.hpp"
 
 using namespace progsim;
 namespace mt = progsim::test_support;
@@ -22,19 +23,6 @@ namespace {
 MidedgeBending make_midedge(const TriangleMesh& rest, const std::vector<ShellMaterial>& materials) {
   return MidedgeBending(rest.vertices, rest.faces,
                         build_topology(rest.faces, rest.num_vertices()).hinges, materials);
-}
-
-/// The flat sheet's vertices wrapped isometrically onto a cylinder of radius r whose axis makes
-/// the angle alpha with the sheet's y axis (x along the arc).
-Vector wrapped_on_cylinder(const TriangleMesh& flat, double r, double alpha) {
-  Vector x(3 * flat.num_vertices());
-  const double c = std::cos(alpha), s = std::sin(alpha);
-  for (int v = 0; v < flat.num_vertices(); ++v) {
-    const double u = c * flat.vertices(v, 0) - s * flat.vertices(v, 1);  // across the axis
-    const double w = s * flat.vertices(v, 0) + c * flat.vertices(v, 1);  // along the axis
-    x.segment<3>(3 * v) << r * std::sin(u / r), w, r * (1.0 - std::cos(u / r));
-  }
-  return x;
 }
 
 /// Kirchhoff plate energy of a cylinder of radius r over area a: (D/2) a / r²,
@@ -128,12 +116,11 @@ TEST(MidedgeBending, GridRolledAlongItsAxisCarriesThePlateEnergy) {
       const MidedgeBending term =
           make_midedge(flat, std::vector<ShellMaterial>(flat.num_faces(), m));
       const double plate = cylinder_plate_energy(m, width * length, radius);
-      const double ratio = term.value(wrapped_on_cylinder(flat, radius, 0.0)) / plate;
+      const double ratio = term.value(mt::rolled(flat, radius, 0.0)) / plate;
       std::cout << "[ midedge  ] grid, nu = " << nu << ", nx = " << nx << ": E/E_plate = " << ratio
-                << " (axis along y), "
-                << term.value(wrapped_on_cylinder(flat, radius, kPi / 6)) / plate << " (30 deg), "
-                << term.value(wrapped_on_cylinder(flat, radius, kPi / 4)) / plate << " (45 deg)"
-                << std::endl;
+                << " (axis along y), " << term.value(mt::rolled(flat, radius, kPi / 6)) / plate
+                << " (30 deg), " << term.value(mt::rolled(flat, radius, kPi / 4)) / plate
+                << " (45 deg)" << std::endl;
       const double error = std::abs(ratio - 1.0);
       EXPECT_LT(error, 0.6 * previous_error) << "nx = " << nx;
       previous_error = error;
@@ -167,35 +154,16 @@ TEST(MidedgeBending, RejectsBadInput) {
 TEST(MidedgeBending, EquilateralSheetRolledIntoCylinderCarriesThePlateEnergy) {
   // Rows of equilateral triangles (edge a = 1/40), rolled about axes at several angles: the
   // ratio to (D/2) A / R² is near 1 for every axis (the boundary rows cost O(a)).
-  const int n = 40;
-  const double a = 1.0 / n, row = a * std::sqrt(3.0) / 2.0, radius = 0.5;
-  const int rows = static_cast<int>(1.0 / row);
-  TriangleMesh sheet;
-  sheet.vertices.resize((n + 1) * (rows + 1), 3);
-  for (int j = 0; j <= rows; ++j)
-    for (int i = 0; i <= n; ++i)
-      sheet.vertices.row(j * (n + 1) + i) << (i + 0.5 * (j % 2)) * a, j * row, 0.0;
-  sheet.faces.resize(2 * n * rows, 3);
-  int f = 0;
-  for (int j = 0; j < rows; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int v00 = j * (n + 1) + i, v10 = v00 + 1, v01 = v00 + n + 1, v11 = v01 + 1;
-      if (j % 2 == 0) {
-        sheet.faces.row(f++) << v00, v10, v01;
-        sheet.faces.row(f++) << v10, v11, v01;
-      } else {
-        sheet.faces.row(f++) << v00, v10, v11;
-        sheet.faces.row(f++) << v00, v11, v01;
-      }
-    }
+  const TriangleMesh sheet = mt::equilateral_sheet(40);
+  const double radius = 0.5;
   ShellMaterial m;
   m.poisson_ratio = 0.0;
-  const MidedgeBending term = make_midedge(sheet, std::vector<ShellMaterial>(f, m));
+  const MidedgeBending term = make_midedge(sheet, std::vector<ShellMaterial>(sheet.num_faces(), m));
   const double plate =
       cylinder_plate_energy(m, face_areas(sheet.vertices, sheet.faces).sum(), radius);
   std::cout << "[ midedge  ] equilateral, E/E_plate:";
   for (double alpha : {0.0, kPi / 12, kPi / 6, kPi / 4, kPi / 2}) {
-    const double ratio = term.value(wrapped_on_cylinder(sheet, radius, alpha)) / plate;
+    const double ratio = term.value(mt::rolled(sheet, radius, alpha)) / plate;
     std::cout << " " << ratio;
     EXPECT_NEAR(ratio, 1.0, 0.03) << "axis at " << alpha << " rad";  // measured 0.978–0.988
   }
