@@ -170,3 +170,38 @@ TEST(MidedgeBending, EquilateralSheetRolledIntoCylinderCarriesThePlateEnergy) {
   }
   std::cout << std::endl;
 }
+
+TEST(MidedgeBending, PoissonRatioCouplesTheTwoCurvaturesAsInKirchhoffPlates) {
+  // z = ½(κ₁ x² + κ₂ y²) with small κ (the metric changes by O(κ² x²) < 1 %): Kirchhoff's
+  // energy per area (D/2)[(κ₁ + κ₂)² − 2(1 − ν) κ₁κ₂], D = E t³/(12(1 − ν²)), ν = 0.3.
+  // A sphere-like (κ₂ = κ₁), a cylinder (κ₂ = 0) and the anticlastic shape a free strip takes
+  // under an end moment (κ₂ = −ν κ₁), whose energy is the lowest of all κ₂ for that κ₁.
+  const TriangleMesh sheet = mt::equilateral_sheet(40);
+  ShellMaterial m;
+  m.poisson_ratio = 0.3;
+  const MidedgeBending term = make_midedge(sheet, std::vector<ShellMaterial>(sheet.num_faces(), m));
+  const double d = m.youngs_modulus * std::pow(m.thickness, 3) / (12.0 * (1.0 - 0.09));
+  const double area = face_areas(sheet.vertices, sheet.faces).sum();
+  const double k1 = 0.1;
+  double lowest = 1e9, lowest_k2 = 0.0;
+  std::cout << "[ midedge  ] nu = 0.3, E/E_plate for k2/k1 =";
+  for (double ratio : {1.0, 0.0, -0.3, -0.6}) {
+    const double k2 = ratio * k1;
+    Vector x = as_dofs(sheet.vertices);
+    for (int v = 0; v < sheet.num_vertices(); ++v) {
+      const double px = sheet.vertices(v, 0) - 0.5, py = sheet.vertices(v, 1) - 0.5;
+      x[3 * v + 2] = 0.5 * (k1 * px * px + k2 * py * py);
+    }
+    const double plate =
+        0.5 * d * area * ((k1 + k2) * (k1 + k2) - 2.0 * (1.0 - m.poisson_ratio) * k1 * k2);
+    const double energy = term.value(x);
+    std::cout << " " << ratio << ": " << energy / plate;
+    EXPECT_NEAR(energy / plate, 1.0, 0.03) << "k2/k1 = " << ratio;
+    if (energy < lowest) {
+      lowest = energy;
+      lowest_k2 = ratio;
+    }
+  }
+  std::cout << std::endl;
+  EXPECT_EQ(lowest_k2, -0.3);
+}
