@@ -11,97 +11,10 @@
 namespace progsim {
 namespace {
 
-using Vector12 = Eigen::Matrix<double, 12, 1>;
-using Matrix12 = Eigen::Matrix<double, 12, 12>;
 using Matrix9 = Eigen::Matrix<double, 9, 9>;
 using Matrix12x9 = Eigen::Matrix<double, 12, 9>;
 using Matrix8 = Eigen::Matrix<double, 8, 8>;
 using Matrix12x8 = Eigen::Matrix<double, 12, 8>;
-
-/// [v]×, the matrix of v × · (3×3).
-Mat3 cross_matrix(const Vec3& v) {
-  Mat3 m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
-/// The quantities ∇θ and ∇²θ are built from, for one hinge at positions xe (12).
-struct HingeFrame {
-  Vec3 e, w, u;   ///< x1 − x0, x2 − x0, x3 − x0
-  Vec3 n1, n2;    ///< face normals scaled by twice the area: e × w, u × e
-  double length;  ///< ‖e‖
-  double n1_sq;   ///< ‖n₁‖²
-  double n2_sq;   ///< ‖n₂‖²
-  double t1, t2;  ///< projections of x2, x3 onto the edge: (w·e)/‖e‖², (u·e)/‖e‖²
-  Vec3 m1, m2;  ///< ‖e‖ n_i/‖n_i‖² = n̂_i / h_i (h_i the height of face i over the edge)
-
-  explicit HingeFrame(const StencilTerm<4>::LocalVector& xe) {
-    const Vec3 x0 = xe.segment<3>(0);
-    e = xe.segment<3>(3) - x0;
-    w = xe.segment<3>(6) - x0;
-    u = xe.segment<3>(9) - x0;
-    n1 = e.cross(w);
-    n2 = u.cross(e);
-    const double e_sq = e.squaredNorm();
-    length = std::sqrt(e_sq);
-    n1_sq = n1.squaredNorm();
-    n2_sq = n2.squaredNorm();
-    t1 = w.dot(e) / e_sq;
-    t2 = u.dot(e) / e_sq;
-    m1 = (length / n1_sq) * n1;
-    m2 = (length / n2_sq) * n2;
-  }
-
-  /// ∇θ (12): opposite vertices −‖e‖ n_i/‖n_i‖², edge vertices the combination weighted by
-  /// the opposite vertices' projections onto the edge (Bridson et al. 2003, "Simulation of clothing
-  /// with folds and wrinkles", bending force directions u₁..u₄).
-  Vector12 angle_gradient() const {
-    Vector12 g;
-    g.segment<3>(0) = (1.0 - t1) * m1 + (1.0 - t2) * m2;
-    g.segment<3>(3) = t1 * m1 + t2 * m2;
-    g.segment<3>(6) = -m1;
-    g.segment<3>(9) = -m2;
-    return g;
-  }
-
-  /// ∇²θ (12×12), the exact derivative of angle_gradient() (cf. Tamstorf & Grinspun 2013).
-  Matrix12 angle_hessian() const {
-    const double e_sq = length * length;
-    const Vec3 e_hat = e / length;
-    // ∂m_i/∂x_j = n_i/‖n_i‖² (∂‖e‖/∂x_j)ᵀ + ‖e‖/‖n_i‖² (I − 2 n̂_i n̂_iᵀ) ∂n_i/∂x_j.
-    const Mat3 p1 = (length / n1_sq) * (Mat3::Identity() - (2.0 / n1_sq) * n1 * n1.transpose());
-    const Mat3 p2 = (length / n2_sq) * (Mat3::Identity() - (2.0 / n2_sq) * n2 * n2.transpose());
-    const Vec3 a1 = n1 / n1_sq, a2 = n2 / n2_sq;
-    Mat3 dm1[4], dm2[4];                                          // ∂m₁/∂x_j, ∂m₂/∂x_j
-    dm1[0] = -a1 * e_hat.transpose() + p1 * cross_matrix(w - e);  // ∂n₁/∂x0 = [w − e]×
-    dm1[1] = a1 * e_hat.transpose() - p1 * cross_matrix(w);       // ∂n₁/∂x1 = −[w]×
-    dm1[2] = p1 * cross_matrix(e);                                // ∂n₁/∂x2 = [e]×
-    dm1[3].setZero();
-    dm2[0] = -a2 * e_hat.transpose() + p2 * cross_matrix(e - u);  // ∂n₂/∂x0 = [e − u]×
-    dm2[1] = a2 * e_hat.transpose() + p2 * cross_matrix(u);       // ∂n₂/∂x1 = [u]×
-    dm2[2].setZero();
-    dm2[3] = -p2 * cross_matrix(e);  // ∂n₂/∂x3 = −[e]×
-    // ∂t_i/∂x_j, from t₁ = (w·e)/‖e‖², t₂ = (u·e)/‖e‖².
-    Vec3 dt1[4], dt2[4];
-    dt1[1] = (w - 2.0 * t1 * e) / e_sq;
-    dt1[2] = e / e_sq;
-    dt1[3].setZero();
-    dt1[0] = -dt1[1] - dt1[2];
-    dt2[1] = (u - 2.0 * t2 * e) / e_sq;
-    dt2[2].setZero();
-    dt2[3] = e / e_sq;
-    dt2[0] = -dt2[1] - dt2[3];
-    Matrix12 h;
-    for (int j = 0; j < 4; ++j) {
-      const Mat3 c1 = m1 * dt1[j].transpose(), c2 = m2 * dt2[j].transpose();
-      h.block<3, 3>(0, 3 * j) = (1.0 - t1) * dm1[j] - c1 + (1.0 - t2) * dm2[j] - c2;
-      h.block<3, 3>(3, 3 * j) = t1 * dm1[j] + c1 + t2 * dm2[j] + c2;
-      h.block<3, 3>(6, 3 * j) = -dm1[j];
-      h.block<3, 3>(9, 3 * j) = -dm2[j];
-    }
-    return 0.5 * (h + h.transpose());  // exact up to rounding; make it symmetric bit for bit
-  }
-};
 
 /// Q = W ⊗ I₃ (12×9): an orthonormal basis of the complement of the rigid translations of the
 /// four hinge vertices (W's columns are Helmert contrasts, orthogonal to (1, 1, 1, 1)).
@@ -118,14 +31,6 @@ Matrix12x9 translation_complement() {
 }
 
 }  // namespace
-
-double dihedral_angle(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3) {
-  const Vec3 e = x1 - x0;
-  const Vec3 n1 = e.cross(x2 - x0), n2 = (x3 - x0).cross(e);
-  const double length = e.norm();
-  // θ = atan2((n₁ × n₂)·ê, n₁·n₂): both arguments carry the same factor ‖n₁‖‖n₂‖ > 0.
-  return std::atan2(length > 0.0 ? n1.cross(n2).dot(e) / length : 0.0, n1.dot(n2));
-}
 
 HingeBending::HingeBending(const Positions& rest, const Faces& faces,
                            const std::vector<Hinge>& hinges,

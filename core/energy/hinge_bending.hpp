@@ -3,18 +3,12 @@
 /// Shells"; derivatives after Bridson et al. 2003 and Tamstorf & Grinspun 2013; DESIGN.md §2).
 #include <vector>
 
+#include "energy/dihedral_angle.hpp"
 #include "energy/shell_material.hpp"
 #include "energy/stencil_term.hpp"
 #include "mesh/mesh_topology.hpp"
 
 namespace progsim {
-
-/// Signed dihedral angle θ (radians, in (−π, π]) of the hinge with edge x0 → x1, first face
-/// (x0, x1, x2) and second face (x1, x0, x3): θ = atan2((n₁ × n₂)·ê, n₁·n₂) with
-/// n₁ = (x1 − x0) × (x2 − x0), n₂ = (x3 − x0) × (x1 − x0). θ = 0 for a flat hinge; θ < 0
-/// when the opposite vertices move to the side n₁ points to. Finite for any input (atan2(0, 0)
-/// = 0 for degenerate faces); accurate near 0 and near ±π.
-double dihedral_angle(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3);
 
 /// How HingeBending projects its element Hessians onto the PSD cone.
 enum class HingeProjection {

@@ -3,6 +3,15 @@
 
 namespace progsim {
 
+/// The discrete bending energy of a shell.
+enum class BendingModel {
+  /// HingeBending: dihedral angles of interior edges (Grinspun et al. 2003, as in C-IPC and the
+  /// PSQ seeds). Softer than the plate on right-triangle grids, and more so under refinement.
+  hinge,
+  /// MidedgeBending: the mid-edge shape operator (Grinspun et al. 2006; Chen et al. 2018).
+  midedge,
+};
+
 /// Isotropic shell material. SI units.
 struct ShellMaterial {
   double youngs_modulus = 1e6;  ///< E, Pa
@@ -13,6 +22,7 @@ struct ShellMaterial {
   double density = 200.0;      ///< ρ, kg/m³ (volumetric; areal density is ρ t)
   double friction = 0.0;       ///< Coulomb μ of the surface (contact pairs mix √(μ_a μ_b))
   double strain_limit = 0.0;   ///< s_max > 1: cap on membrane principal stretches; 0: none
+  BendingModel bending_model = BendingModel::hinge;  ///< one per scene (all bodies agree)
 };
 
 /// Shear modulus μ = E / (2(1+ν)).

@@ -84,5 +84,6 @@ template class StencilTerm<1>;
 template class StencilTerm<2>;
 template class StencilTerm<3>;
 template class StencilTerm<4>;
+template class StencilTerm<6>;
 
 }  // namespace progsim

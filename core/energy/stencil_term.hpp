@@ -62,5 +62,6 @@ extern template class StencilTerm<1>;
 extern template class StencilTerm<2>;
 extern template class StencilTerm<3>;
 extern template class StencilTerm<4>;
+extern template class StencilTerm<6>;
 
 }  // namespace progsim

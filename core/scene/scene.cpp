@@ -243,6 +243,10 @@ void validate_scene(const Scene& scene) {
   if (scene.bodies.empty()) fail(Status::invalid_scene, "the scene has no bodies");
   for (const Body& body : scene.bodies) {
     validate_material(body.material);
+    if (body.material.bending_model != scene.bodies.front().material.bending_model)
+      fail(Status::invalid_scene, body.name + ": material.bending_model differs from " +
+                                      scene.bodies.front().name +
+                                      "'s (one bending model per scene)");
     validate_mesh(body.mesh, body.name);
     if (!std::isfinite(body.pressure) || !(body.pressure_ramp >= 0.0) ||
         !std::isfinite(body.pressure_ramp))

@@ -161,10 +161,24 @@ void apply_transform(const Json& j, const std::string& where, Positions& p) {
     p.row(i) = (rotation * (scale * p.row(i).transpose()) + shift).transpose();
 }
 
+/// The option j[key] names among `known` (name, value), the first when j has no key;
+/// scene_error naming the known ones otherwise.
+template <typename Enum>
+Enum choice(const Json& j, const std::string& key, const std::string& where,
+            std::initializer_list<std::pair<const char*, Enum>> known) {
+  const std::string name = j.value(key, std::string(known.begin()->first));
+  std::string names;
+  for (const auto& [option, value] : known) {
+    if (name == option) return value;
+    names += (names.empty() ? "" : ", ") + std::string(option);
+  }
+  scene_error(where + "." + key, "unknown '" + name + "' (known: " + names + ")");
+}
+
 ShellMaterial material(const Json& j, const std::string& where) {
   expect_keys(j, where,
               {"youngs_modulus", "bending_youngs_modulus", "poisson_ratio", "thickness", "density",
-               "friction", "strain_limit"});
+               "friction", "strain_limit", "bending_model"});
   ShellMaterial m;
   m.youngs_modulus = parameter(j, "material", "youngs_modulus", where);
   m.bending_youngs_modulus = parameter(j, "material", "bending_youngs_modulus", where);
@@ -173,6 +187,9 @@ ShellMaterial material(const Json& j, const std::string& where) {
   m.density = parameter(j, "material", "density", where);
   m.friction = parameter(j, "material", "friction", where);
   m.strain_limit = parameter(j, "material", "strain_limit", where);
+  m.bending_model =
+      choice<BendingModel>(j, "bending_model", where,
+                           {{"hinge", BendingModel::hinge}, {"midedge", BendingModel::midedge}});
   return m;
 }
 
@@ -277,20 +294,6 @@ unsigned handle_axes(const Json& j, const std::string& where) {
   }
   if (axes == 0) scene_error(where, "holds no axis (give e.g. \"xyz\" or \"y\")");
   return axes;
-}
-
-/// The option j[key] names among `known` (name, value), the first when j has no key;
-/// scene_error naming the known ones otherwise.
-template <typename Enum>
-Enum choice(const Json& j, const std::string& key, const std::string& where,
-            std::initializer_list<std::pair<const char*, Enum>> known) {
-  const std::string name = j.value(key, std::string(known.begin()->first));
-  std::string names;
-  for (const auto& [option, value] : known) {
-    if (name == option) return value;
-    names += (names.empty() ? "" : ", ") + std::string(option);
-  }
-  scene_error(where + "." + key, "unknown '" + name + "' (known: " + names + ")");
 }
 
 /// A body and vertices of it, as handles and loads select them.

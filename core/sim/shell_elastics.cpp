@@ -2,6 +2,7 @@
 
 #include "energy/gravity.hpp"
 #include "energy/hinge_bending.hpp"
+#include "energy/midedge_bending.hpp"
 #include "energy/neo_hookean_membrane.hpp"
 #include "energy/pressure.hpp"
 #include "energy/tension_field_membrane.hpp"
@@ -23,6 +24,19 @@ std::unique_ptr<EnergyTerm> membrane_term(const ShellModel& model, MembraneModel
   return std::make_unique<NeoHookeanMembrane>(rest, model.rest.faces, model.face_materials);
 }
 
+/// The bending term of `model`, of the model its materials select (validate_scene() makes all
+/// bodies agree).
+std::unique_ptr<EnergyTerm> bending_term(const ShellModel& model) {
+  const Positions& rest = model.rest.vertices;
+  const bool midedge = !model.face_materials.empty() &&
+                       model.face_materials.front().bending_model == BendingModel::midedge;
+  if (midedge)
+    return std::make_unique<MidedgeBending>(rest, model.rest.faces, model.topology.hinges,
+                                            model.face_materials);
+  return std::make_unique<HingeBending>(rest, model.rest.faces, model.topology.hinges,
+                                        model.face_materials);
+}
+
 }  // namespace
 
 ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, bool with_gravity,
@@ -31,9 +45,7 @@ ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, b
   const EffectSet& fx = scene.effects;
   const Positions& rest = model.rest.vertices;
   if (fx.has(Effect::membrane)) out.terms.push_back(membrane_term(model, membrane));
-  if (fx.has(Effect::bending))
-    out.terms.push_back(std::make_unique<HingeBending>(
-        rest, model.rest.faces, model.topology.hinges, model.face_materials));
+  if (fx.has(Effect::bending)) out.terms.push_back(bending_term(model));
   if (with_gravity && fx.has(Effect::gravity)) {
     auto gravity = std::make_unique<Gravity>(model.vertex_masses, scene.gravity);
     out.gravity = gravity.get();

@@ -10,13 +10,14 @@
 #include <cstddef>
 
 #include "energy/hinge_bending.hpp"
+#include "energy/midedge_bending.hpp"
 #include "energy/neo_hookean_membrane.hpp"
+#include "energy/prolonged_elastics.hpp"
 #include "hierarchy/barycentric_prolongation.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "mesh/mesh_topology.hpp"
-#include "energy/prolonged_elastics.hpp"
 
 extern "C" {
 void* __libc_malloc(std::size_t size);
@@ -116,6 +117,29 @@ TEST(AllocationFree, ProxyEnergyValueAndGradient) {
         proxy.value(x);
         proxy.add_gradient(x, g);
       }
+    });
+    EXPECT_EQ(count, 0) << threads << " thread(s)";
+  }
+}
+
+TEST(AllocationFree, MidedgeBendingValueGradientAndHessian) {
+  // Mid-edge bending's per-face evaluation (18-DOF elements, PSD clamp) on 1 and 2 threads.
+  const TriangleMesh sheet = make_grid(1.0, 1.0, 20, 20);
+  const MidedgeBending term(sheet.vertices, sheet.faces,
+                            build_topology(sheet.faces, sheet.num_vertices()).hinges,
+                            std::vector<ShellMaterial>(sheet.num_faces()));
+  Vector x = as_dofs(sheet.vertices);
+  for (int v = 0; v < sheet.num_vertices(); ++v) x[3 * v + 2] = 0.01 * (v % 7);
+  Vector g = Vector::Zero(x.size());
+  std::vector<double> values(term.hessian_entry_count());
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    term.add_gradient(x, g);  // warm-up: OpenMP's thread team
+    const long count = allocations_in([&] {
+      term.value(x);
+      term.add_gradient(x, g);
+      term.hessian_values(x, true, values.data());
+      term.hessian_values(x, false, values.data());
     });
     EXPECT_EQ(count, 0) << threads << " thread(s)";
   }

@@ -17,6 +17,7 @@
 #include "mesh/mesh_topology.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "support/energy_checks.hpp"
+#include "support/rolled_sheets.hpp"
 
 using namespace progsim;
 namespace pt = progsim::test_support;
@@ -24,6 +25,7 @@ using pt::eigenvalues;
 using pt::expect_derivatives_match_finite_differences;
 using pt::perturbed;
 using pt::rigidly_moved;
+using pt::rolled;
 using pt::varied_materials;
 
 namespace {
@@ -53,19 +55,6 @@ Eigen::MatrixXd clamped(const Eigen::MatrixXd& h) {
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(h);
   return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() *
          eig.eigenvectors().transpose();
-}
-
-/// A flat width × length grid (nx × ny quads) wrapped onto a cylinder of radius r whose axis
-/// makes the angle alpha with the grid's y axis: positions only (the rest stays flat).
-Vector rolled(const TriangleMesh& flat, double r, double alpha) {
-  Vector x(3 * flat.num_vertices());
-  const double c = std::cos(alpha), s = std::sin(alpha);
-  for (int v = 0; v < flat.num_vertices(); ++v) {
-    const double u = c * flat.vertices(v, 0) - s * flat.vertices(v, 1);  // across the axis
-    const double w = s * flat.vertices(v, 0) + c * flat.vertices(v, 1);  // along the axis
-    x.segment<3>(3 * v) << r * std::sin(u / r), w, r * (1.0 - std::cos(u / r));
-  }
-  return x;
 }
 
 }  // namespace
@@ -289,29 +278,10 @@ TEST(HingeBending, SheetRolledIntoCylinderVersusContinuum) {
 TEST(HingeBending, EquilateralSheetRolledIntoCylinderCarriesThePlateEnergy) {
   // Rows of equilateral triangles (edge a), rolled about axes at several angles: the ratio to
   // (D/2) ∫ κ² dA is isotropic and tends to 1 (boundary rows lack hinges: O(a) below).
-  const int n = 60;
-  const double a = 1.0 / n, row = a * std::sqrt(3.0) / 2.0, radius = 0.5;
-  const int rows = static_cast<int>(1.0 / row);
-  TriangleMesh sheet;
-  sheet.vertices.resize((n + 1) * (rows + 1), 3);
-  for (int j = 0; j <= rows; ++j)
-    for (int i = 0; i <= n; ++i)
-      sheet.vertices.row(j * (n + 1) + i) << (i + 0.5 * (j % 2)) * a, j * row, 0.0;
-  sheet.faces.resize(2 * n * rows, 3);
-  int f = 0;
-  for (int j = 0; j < rows; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int v00 = j * (n + 1) + i, v10 = v00 + 1, v01 = v00 + n + 1, v11 = v01 + 1;
-      if (j % 2 == 0) {
-        sheet.faces.row(f++) << v00, v10, v01;
-        sheet.faces.row(f++) << v10, v11, v01;
-      } else {
-        sheet.faces.row(f++) << v00, v10, v11;
-        sheet.faces.row(f++) << v00, v11, v01;
-      }
-    }
+  const TriangleMesh sheet = pt::equilateral_sheet(60);
+  const double radius = 0.5;
   ShellMaterial m;
-  const HingeBending term = make_term(sheet, std::vector<ShellMaterial>(f, m));
+  const HingeBending term = make_term(sheet, std::vector<ShellMaterial>(sheet.num_faces(), m));
   const double k = m.youngs_modulus * std::pow(m.thickness, 3) / (24 * (1 - 0.09));
   const double continuum = k * face_areas(sheet.vertices, sheet.faces).sum() / (radius * radius);
   double lowest = 1e9, highest = 0.0;

@@ -1,0 +1,231 @@
+// Convergence of the bending models under mesh refinement (issue 31): a cantilever strip under
+// its own weight (small deflection, ν = 0) against Euler–Bernoulli q L⁴ / (8 E I), on the
+// alternating-diagonal grid, the one-diagonal grid and a randomly perturbed grid, for hinge
+// and mid-edge bending.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "common/error.hpp"
+#include "energy/gravity.hpp"
+#include "energy/hinge_bending.hpp"
+#include "energy/lumped_mass.hpp"
+#include "energy/midedge_bending.hpp"
+#include "energy/neo_hookean_membrane.hpp"
+#include "mesh/mesh_generators.hpp"
+#include "mesh/mesh_topology.hpp"
+#include "problem/problem.hpp"
+#include "progressive/progressive_simulation.hpp"
+#include "scene/scene_json.hpp"
+#include "sim/level_simulation.hpp"
+#include "solve/newton_solver.hpp"
+
+using namespace progsim;
+
+namespace {
+
+constexpr double kLength = 0.5, kWidth = 0.1, kThickness = 1e-3, kModulus = 1e11;
+constexpr double kDensity = 1000.0, kGravity = 9.81;
+
+enum class GridPattern { alternating, one_diagonal, perturbed };
+
+/// A kLength × kWidth strip of nx × nx/5 quads: make_grid's alternating diagonals, every quad
+/// split along the same diagonal, or the alternating grid with its interior vertices beyond the
+/// clamp moved in-plane by up to 0.2 of a cell (a fixed seed).
+TriangleMesh strip_mesh(int nx, GridPattern pattern) {
+  const int ny = nx / 5;
+  TriangleMesh mesh = make_grid(kLength, kWidth, nx, ny);
+  const double hx = kLength / nx, hy = kWidth / ny;
+  if (pattern == GridPattern::one_diagonal) {
+    int f = 0;
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int v00 = j * (nx + 1) + i, v10 = v00 + 1, v01 = v00 + nx + 1, v11 = v01 + 1;
+        mesh.faces.row(f++) << v00, v10, v11;
+        mesh.faces.row(f++) << v00, v11, v01;
+      }
+  } else if (pattern == GridPattern::perturbed) {
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> noise(-0.2, 0.2);
+    for (int j = 1; j < ny; ++j)
+      for (int i = 2; i < nx; ++i) {  // the clamp's columns 0 and 1 stay straight
+        const int v = j * (nx + 1) + i;
+        mesh.vertices(v, 0) += noise(rng) * hx;
+        mesh.vertices(v, 1) += noise(rng) * hy;
+      }
+  }
+  return mesh;
+}
+
+/// Tip deflection over q L⁴/(8 E I) of the strip clamped on x ≤ a = L/nx (free length L − a),
+/// with the given bending model; mean of the last column.
+double tip_over_theory(int nx, GridPattern pattern, BendingModel model) {
+  const TriangleMesh mesh = strip_mesh(nx, pattern);
+  ShellMaterial m;
+  m.youngs_modulus = kModulus;
+  m.poisson_ratio = 0.0;
+  m.thickness = kThickness;
+  m.density = kDensity;
+  m.bending_model = model;
+  const std::vector<ShellMaterial> materials(mesh.num_faces(), m);
+  const std::vector<Hinge> hinges = build_topology(mesh.faces, mesh.num_vertices()).hinges;
+  Problem problem(3 * mesh.num_vertices());
+  problem.add_term(std::make_unique<NeoHookeanMembrane>(mesh.vertices, mesh.faces, materials));
+  if (model == BendingModel::midedge)
+    problem.add_term(
+        std::make_unique<MidedgeBending>(mesh.vertices, mesh.faces, hinges, materials));
+  else
+    problem.add_term(std::make_unique<HingeBending>(mesh.vertices, mesh.faces, hinges, materials));
+  problem.add_term(std::make_unique<Gravity>(
+      lumped_vertex_masses(mesh.vertices, mesh.faces, materials), Vec3(0, 0, -kGravity)));
+  const double a = kLength / nx;
+  std::vector<bool> fixed(3 * mesh.num_vertices(), false);
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (mesh.vertices(v, 0) <= a * (1.0 + 1e-9))
+      for (int k = 0; k < 3; ++k) fixed[3 * v + k] = true;
+  problem.set_fixed_dofs(fixed);
+  problem.finalize();
+  Vector x = as_dofs(mesh.vertices);
+  NewtonSettings settings;
+  settings.tolerance = 1e-9;
+  settings.max_iterations = 300;
+  NewtonSolver solver;
+  const NewtonReport report = solver.minimize(problem, x, settings, 1.0, 1.0);
+  EXPECT_EQ(report.stop, NewtonStop::converged) << stop_name(report.stop);
+  const double free_length = kLength - a;
+  const double ei = kModulus * std::pow(kThickness, 3) / 12.0;        // per unit width
+  const double q = kDensity * kThickness * kGravity;                  // N/m²
+  const double expected = q * std::pow(free_length, 4) / (8.0 * ei);  // Euler–Bernoulli
+  EXPECT_LT(expected / free_length, 0.05) << "not a small deflection";
+  double tip = 0.0;
+  int count = 0;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (mesh.vertices(v, 0) >= kLength * (1.0 - 1e-9)) {
+      tip += -x[3 * v + 2];
+      ++count;
+    }
+  return tip / count / expected;
+}
+
+const char* pattern_name(GridPattern p) {
+  return p == GridPattern::alternating
+             ? "alternating"
+             : (p == GridPattern::one_diagonal ? "one diagonal" : "perturbed");
+}
+
+}  // namespace
+
+TEST(BendingConvergence, MidedgeCantileverConvergesToBeamTheoryOnRegularGrids) {
+  // Measured (tip / theory with free length L − a, nx = 20, 40, 80 cells along, nx/5 across):
+  //   alternating   hinge 1.323 1.275 1.252   midedge 1.108 1.052 1.025
+  //   one diagonal  hinge 1.332 1.272 1.243   midedge 1.108 1.052 1.025
+  //   perturbed     hinge 1.233 1.199 1.168   midedge 1.056 1.000 0.965
+  // Mid-edge bending converges at first order on both regular grids (the error halves per
+  // refinement, 2.5 % at 80). That error is the clamp's, not the bending energy's: the clamp's
+  // last edge, at x = a, carries the mean of a clamped and a free face normal, so mid-edge
+  // bending holds the rotation half a cell further in. Against free length L − a/2 it is within
+  // 0.2 % at every size (0.9985, 0.9994, 0.9997) and hinge bending 19, 21, 22 % soft (issue
+  // 31's figures). On the perturbed grid (interior vertices beyond the clamp moved by up to 0.2
+  // cell) the mid-edge average does not converge: 0.952, 0.950, 0.941 against L − a/2, i.e.
+  // 5–6 % too stiff (the averaged edge normals are not consistent on irregular meshes, which is
+  // what Grinspun et al. 2006's per-edge normal DOFs fix); asserted only to beat hinge there.
+  std::printf("[ bending  ] cantilever tip / (q L^4 / 8EI), nu = 0\n");
+  std::printf("[ bending  ] %-13s %4s %9s %9s %16s\n", "mesh", "nx", "hinge", "midedge",
+              "midedge, L - a/2");
+  for (GridPattern pattern :
+       {GridPattern::alternating, GridPattern::one_diagonal, GridPattern::perturbed}) {
+    double previous_error = 1.0;
+    for (int nx : {20, 40, 80}) {
+      const double hinge = tip_over_theory(nx, pattern, BendingModel::hinge);
+      const double midedge = tip_over_theory(nx, pattern, BendingModel::midedge);
+      const double half_cell =  // (L − a/2)⁴ / (L − a)⁴
+          std::pow((kLength - 0.5 * kLength / nx) / (kLength - kLength / nx), 4);
+      std::printf("[ bending  ] %-13s %4d %9.4f %9.4f %16.4f\n", pattern_name(pattern), nx, hinge,
+                  midedge, midedge / half_cell);
+      const double error = std::abs(midedge - 1.0);
+      EXPECT_LT(2.0 * std::abs(midedge / half_cell - 1.0), std::abs(hinge / half_cell - 1.0))
+          << pattern_name(pattern) << ", nx = " << nx;
+      EXPECT_GT(hinge - 1.0, 0.15) << "hinge bending was measured 17-33 % soft";
+      if (pattern == GridPattern::perturbed) continue;
+      EXPECT_NEAR(midedge / half_cell, 1.0, 0.005) << pattern_name(pattern) << ", nx = " << nx;
+      EXPECT_LT(error, previous_error) << pattern_name(pattern) << ", nx = " << nx;
+      if (nx == 80) {
+        EXPECT_LT(error, 0.03) << pattern_name(pattern);
+      }
+      previous_error = error;
+    }
+  }
+}
+
+namespace {
+
+/// A small grid body named `name` with the given JSON material fields.
+std::string grid_body(const std::string& name, const std::string& material) {
+  return R"({"name": ")" + name +
+         R"(", "mesh": {"generator": "grid", "width": 1, "height": 1, "nx": 2, "ny": 2},
+             "material": {)" +
+         material + "}}";
+}
+
+/// A quasistatic scene of one body (second_material empty) or two with these materials.
+std::string bending_scene(const std::string& material, const std::string& second_material) {
+  std::string bodies = grid_body("a", material);
+  if (!second_material.empty()) bodies += ", " + grid_body("b", second_material);
+  return R"({"simulation": {"mode": "quasistatic"}, "effects": ["membrane", "bending"],
+             "bodies": [)" +
+         bodies + "]}";
+}
+
+}  // namespace
+
+TEST(BendingConvergence, SceneMaterialSelectsTheBendingModel) {
+  const Scene hinge = parse_scene(bending_scene("", ""), ".");
+  EXPECT_EQ(hinge.bodies[0].material.bending_model, BendingModel::hinge);  // the default
+  LevelSimulation with_hinge(hinge);
+  EXPECT_NE(dynamic_cast<const HingeBending*>(with_hinge.problem().find_term("bending")), nullptr);
+  const Scene midedge = parse_scene(bending_scene(R"("bending_model": "midedge")", ""), ".");
+  LevelSimulation with_midedge(midedge);
+  EXPECT_NE(dynamic_cast<const MidedgeBending*>(with_midedge.problem().find_term("bending")),
+            nullptr);
+  EXPECT_THROW(parse_scene(bending_scene(R"("bending_model": "kirchhoff")", ""), "."), Error);
+  // One model per scene: bodies that disagree are refused.
+  EXPECT_THROW(
+      LevelSimulation(parse_scene(
+          bending_scene(R"("bending_model": "midedge")", R"("bending_model": "hinge")"), ".")),
+      Error);
+}
+
+TEST(BendingConvergence, ProgressiveLevelsUseTheSelectedModelUpToTheFinest) {
+  // PSQ with mid-edge bending: the preview's proxy evaluates the finest shell terms
+  // make_shell_elastics builds (mid-edge here), and refining to the finest level settles where
+  // a direct mid-edge solve does (the preview and the direct solve share no code path but the
+  // terms).
+  Scene scene = parse_scene(R"({
+    "simulation": {"mode": "quasistatic", "time_step": 1, "duration": 1},
+    "effects": ["membrane", "bending", "gravity"], "gravity": [0, 0, -9.81],
+    "solver": {"newton_tolerance": 1e-9, "max_newton_iterations": 300},
+    "bodies": [{"name": "strip", "mesh": {"generator": "grid", "width": 0.5, "height": 0.1,
+                "nx": 25, "ny": 4}, "material": {"youngs_modulus": 1e9, "poisson_ratio": 0,
+                "thickness": 1e-3, "density": 1000, "bending_model": "midedge"}}],
+    "handles": [{"body": "strip", "box": {"min": [-0.01, -0.01, -0.01],
+                                          "max": [0.021, 0.11, 0.01]}}],
+    "progressive": {"levels": [40], "preview_iterations": 50}})",
+                            ".");
+  ProgressiveSimulation psq(scene);
+  psq.step();
+  bool through_proxy = false;
+  for (const TermStats& s : psq.current().term_totals())
+    through_proxy = through_proxy || (s.name == "bending@finest" && s.gradient_evaluations > 0);
+  EXPECT_TRUE(through_proxy);
+  psq.refine();
+  EXPECT_TRUE(psq.settle_to_equilibrium(20));
+  LevelSimulation direct(scene);
+  ASSERT_NE(dynamic_cast<const MidedgeBending*>(direct.problem().find_term("bending")), nullptr);
+  direct.step();
+  const Positions finest = psq.positions(psq.finest());
+  const Positions reference(direct.positions());
+  EXPECT_LT(reference.col(2).minCoeff(), -1e-3) << "the strip sags";
+  EXPECT_LT((finest - reference).cwiseAbs().maxCoeff(), 1e-6);
+}
