@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 14
+#define PS_VERSION_MINOR 15
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -608,6 +608,78 @@ PS_API int32_t ps_sim_get_handle_reaction(const ps_sim* sim, int32_t level, int3
  */
 PS_API int32_t ps_sim_set_handle_keyframes(ps_sim* sim, int32_t handle, const double* rows,
                                            size_t num_rows, int32_t interpolation);
+
+/**
+ * Adds a handle (scene key "handles"): finest-level vertices `vertices` of body `body` (0 for
+ * a simulation made by ps_sim_create()), held at rest until ps_sim_set_handle_motion() or
+ * ps_sim_set_handle_keyframes() scripts them, prescribing all three coordinates until
+ * ps_sim_set_handle_axes(). Its index (ps_sim_num_handles() − 1) goes to *out_index
+ * (nullable). This rebuilds the simulation, so it is only allowed before its first step,
+ * settle or refinement. On a hierarchy of several levels the scene's handles must be the
+ * hierarchy's vertex groups (ps_hierarchy_def.pinned_vertices gives one, held by
+ * ps_sim_def.pinned_vertices), so this call serves single-level simulations. Errors:
+ * PS_ERROR_NULL_ARGUMENT (vertices NULL with num_vertices > 0), PS_ERROR_INVALID_SCENE (no vertex,
+ * a body or vertex index out of range: the message names it), PS_ERROR_WRONG_CALL_ORDER (after a
+ * step), PS_ERROR_INVALID_ARGUMENT (on several levels, vertices that are not a vertex group of the
+ * hierarchy); on error nothing changed.
+ */
+PS_API int32_t ps_sim_add_handle(ps_sim* sim, int32_t body, const int32_t* vertices,
+                                 size_t num_vertices, int32_t* out_index);
+
+/** A collision object: a triangle mesh moved rigidly by a script, not simulated (scene key
+ *  "obstacles"). Fill with ps_obstacle_def_init(), then set the mesh. */
+typedef struct ps_obstacle_def {
+  const double* vertices; /**< (num_vertices × 3) world positions at t = 0, m; borrowed */
+  size_t num_vertices;    /**< at least 3 */
+  const int32_t* faces;   /**< (num_faces × 3) vertex indices; borrowed */
+  size_t num_faces;       /**< at least 1 */
+  double friction;        /**< Coulomb μ of its surface, [0, 10]; default 0 */
+  /** 0 (default) or 1: a progressive collision object (PSQ §4.6): coarse levels of a PSQ
+   *  simulation meet a decimated copy, refined with the shell */
+  int32_t progressive;
+  int32_t internal_cookie; /**< set by ps_obstacle_def_init(); do not touch */
+} ps_obstacle_def;
+
+/** Fills def with the defaults above (no mesh). def must not be NULL. */
+PS_API void ps_obstacle_def_init(ps_obstacle_def* def);
+
+/**
+ * Adds an obstacle, static until ps_sim_set_obstacle_motion() or
+ * ps_sim_set_obstacle_keyframes() scripts it; its index goes to *out_index (nullable). Needs
+ * PS_EFFECT_CONTACT. Like ps_sim_add_handle() it rebuilds the simulation, so only before the
+ * first step. The mesh is validated (PS_ERROR_INVALID_MESH naming the first bad element);
+ * an obstacle that crosses the shell at t = 0 or comes within its contact offset is refused
+ * with PS_ERROR_INTERSECTING. Other errors: PS_ERROR_INVALID_SCENE (no contact effect,
+ * friction out of range), PS_ERROR_WRONG_CALL_ORDER; on error nothing changed.
+ */
+PS_API int32_t ps_sim_add_obstacle(ps_sim* sim, const ps_obstacle_def* def, int32_t* out_index);
+
+/** Number of obstacles into *out. */
+PS_API int32_t ps_sim_num_obstacles(const ps_sim* sim, int32_t* out);
+
+/** As ps_sim_set_handle_motion(), for obstacle `obstacle` (its vertices' rest positions are
+ *  their positions at t = 0). Errors: PS_ERROR_OUT_OF_RANGE (no such obstacle),
+ *  PS_ERROR_INVALID_ARGUMENT (a NaN/Inf value or a zero axis). */
+PS_API int32_t ps_sim_set_obstacle_motion(ps_sim* sim, int32_t obstacle, const double velocity[3],
+                                          const double axis[3], const double center[3],
+                                          double angular_velocity, const double offset[3]);
+
+/** As ps_sim_set_handle_keyframes(), for obstacle `obstacle`; messages name
+ *  "obstacles[i].motion.keyframes[k]". */
+PS_API int32_t ps_sim_set_obstacle_keyframes(ps_sim* sim, int32_t obstacle, const double* rows,
+                                             size_t num_rows, int32_t interpolation);
+
+/**
+ * Sets the analytic ground (scene key "ground"): the half-space n·x ≥ height, a collision
+ * object without a mesh; `enabled` 0 removes it. `normal` (nullable: +y) need not be unit,
+ * `height` in m, `friction` Coulomb μ in [0, 10]. Needs PS_EFFECT_CONTACT to be enabled.
+ * Allowed between steps: the shell must then be above the ground by its contact offset.
+ * Errors: PS_ERROR_INVALID_ARGUMENT (NaN/Inf, a zero normal), PS_ERROR_INVALID_SCENE
+ * (friction out of range, no contact effect), PS_ERROR_INTERSECTING (the shell is not
+ * above it); on error nothing changed.
+ */
+PS_API int32_t ps_sim_set_ground(ps_sim* sim, int32_t enabled, const double normal[3],
+                                 double height, double friction);
 
 /**
  * Advances `steps` steps at the current level (the preview while it is not the finest).

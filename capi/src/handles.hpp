@@ -83,6 +83,18 @@ void edit_scene(ps_sim& sim, Edit&& edit) {
   sim.scene = std::move(scene);
 }
 
+/// Replaces the simulation's driver by one built on its hierarchy for `scene`, which changes
+/// what a driver fixes when it is built (handles: the hierarchy's vertex groups; obstacles: the
+/// progressive obstacle levels). Throws ApiError(PS_ERROR_WRONG_CALL_ORDER) naming `what` once
+/// the simulation has stepped; on any error nothing changed.
+void rebuild_scene(ps_sim& sim, Scene scene, const char* what);
+
+/// A mesh from the C ABI's borrowed arrays (num_vertices × 3 doubles, num_faces × 3 indices);
+/// throws ApiError(PS_ERROR_NULL_ARGUMENT / PS_ERROR_INVALID_MESH) for NULL arrays or sizes
+/// outside [1, INT32_MAX / 3]. The mesh itself is validated by its user.
+TriangleMesh borrowed_mesh(const double* vertices, std::size_t num_vertices, const int32_t* faces,
+                           std::size_t num_faces);
+
 /// Marks sim busy for the lifetime of this guard.
 class BusyGuard {
  public:

@@ -75,6 +75,22 @@ std::unique_ptr<ps_hierarchy> build(const ps_hierarchy_def* def, const TriangleM
 
 }  // namespace
 
+TriangleMesh borrowed_mesh(const double* vertices, std::size_t num_vertices, const int32_t* faces,
+                           std::size_t num_faces) {
+  require(vertices, "vertices");
+  require(faces, "faces");
+  constexpr size_t kMax = static_cast<size_t>(std::numeric_limits<int32_t>::max() / 3);
+  if (num_vertices == 0 || num_faces == 0 || num_vertices > kMax || num_faces > kMax)
+    api_fail(PS_ERROR_INVALID_MESH, "a mesh needs 1 to " + std::to_string(kMax) +
+                                        " vertices and faces, got " + std::to_string(num_vertices) +
+                                        " vertices and " + std::to_string(num_faces) + " faces");
+  TriangleMesh mesh;
+  mesh.vertices = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+      vertices, static_cast<Eigen::Index>(num_vertices), 3);
+  mesh.faces = Eigen::Map<const Faces>(faces, static_cast<Eigen::Index>(num_faces), 3);
+  return mesh;
+}
+
 const TriangleMesh& level_mesh(const ps_hierarchy& hierarchy, int32_t level) {
   const auto n = static_cast<int32_t>(hierarchy.mesh_hierarchy.levels.size());
   if (level < 0 || level >= n)
@@ -102,19 +118,7 @@ PS_API int32_t ps_hierarchy_create(const ps_hierarchy_def* def, const double* ve
                                    ps_hierarchy** out) {
   return guarded(nullptr, "ps_hierarchy_create", [&] {
     require(out, "out");
-    require(vertices, "vertices");
-    require(faces, "faces");
-    constexpr size_t kMax = static_cast<size_t>(std::numeric_limits<int32_t>::max() / 3);
-    if (num_vertices == 0 || num_faces == 0 || num_vertices > kMax || num_faces > kMax)
-      api_fail(PS_ERROR_INVALID_MESH, "a mesh needs 1 to " + std::to_string(kMax) +
-                                          " vertices and faces, got " +
-                                          std::to_string(num_vertices) + " vertices and " +
-                                          std::to_string(num_faces) + " faces");
-    TriangleMesh mesh;
-    mesh.vertices = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
-        vertices, static_cast<Eigen::Index>(num_vertices), 3);
-    mesh.faces = Eigen::Map<const Faces>(faces, static_cast<Eigen::Index>(num_faces), 3);
-    *out = build(def, mesh).release();
+    *out = build(def, borrowed_mesh(vertices, num_vertices, faces, num_faces)).release();
   });
 }
 

@@ -1,5 +1,6 @@
 // ps_sim_*: creating simulations and changing their parameters between steps.
 #include "handles.hpp"
+#include "motion_args.hpp"
 #include "scene/scene_json.hpp"
 #include "scene/scene_parameters.hpp"
 #include "sim_def.hpp"
@@ -46,6 +47,13 @@ std::unique_ptr<ps_sim> sim_from_scene(Scene scene) {
   return sim;
 }
 
+/// Whether the simulation has stepped, settled or refined since it was created or restarted.
+bool started(const ps_sim& sim) {
+  if (sim.dynamics) return sim.dynamics->level() > 0 || sim.dynamics->num_frames(0) > 1;
+  const LevelRecord& first = sim.simulation->records().front();
+  return sim.simulation->level() > 0 || first.steps + first.settles > 0;
+}
+
 const char* kind_name(ps_sim_kind kind) {
   switch (kind) {
     case PS_SIM_PSQ:
@@ -58,10 +66,6 @@ const char* kind_name(ps_sim_kind kind) {
   }
 }
 
-Vec3 vec3_or(const double* v, const Vec3& fallback) {
-  return v ? Vec3(v[0], v[1], v[2]) : fallback;
-}
-
 /// Throws ApiError(PS_ERROR_OUT_OF_RANGE) unless the scene has handle `handle`.
 void require_handle(const ps_sim& sim, int32_t handle) {
   const auto n = static_cast<int32_t>(sim.scene.handles.size());
@@ -71,26 +75,8 @@ void require_handle(const ps_sim& sim, int32_t handle) {
                                         " handles)");
 }
 
-/// Validates `motion` as an argument (the core's rules) and scripts handle `handle` with it.
-void set_motion(ps_sim& sim, int32_t handle, HandleMotion motion) {
-  validate_motion(motion, "handles[" + std::to_string(handle) + "].motion",
-                  Status::invalid_argument);
-  motion.axis.normalize();
-  edit_scene(sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });
-}
-
-Interpolation interpolation_from_enum(int32_t interpolation) {
-  switch (interpolation) {
-    case PS_INTERPOLATION_HOLD:
-      return Interpolation::hold;
-    case PS_INTERPOLATION_LINEAR:
-      return Interpolation::linear;
-    case PS_INTERPOLATION_SMOOTH:
-      return Interpolation::smooth;
-    default:
-      api_fail(PS_ERROR_INVALID_ARGUMENT,
-               "interpolation = " + std::to_string(interpolation) + " is not a ps_interpolation");
-  }
+std::string handle_motion_name(int32_t handle) {
+  return "handles[" + std::to_string(handle) + "].motion";
 }
 
 /// The reactions after the last solve on a level (empty before any, and on previews).
@@ -111,6 +97,18 @@ void copy3(const Vec3& v, double out[3]) {
 ps_sim_kind sim_kind(const ps_sim& sim) {
   if (sim.dynamics) return PS_SIM_PROGRESSIVE_DYNAMICS;
   return sim.hierarchy->mesh_hierarchy.num_levels() > 1 ? PS_SIM_PSQ : PS_SIM_DIRECT;
+}
+
+void rebuild_scene(ps_sim& sim, Scene scene, const char* what) {
+  if (started(sim))
+    api_fail(PS_ERROR_WRONG_CALL_ORDER,
+             std::string(what) +
+                 " changes the scene's structure and is only allowed before the first step, "
+                 "settle or refinement (create a new simulation)");
+  std::unique_ptr<ps_sim> fresh = build_sim(std::move(scene), sim.hierarchy->shared);
+  sim.simulation = std::move(fresh->simulation);
+  sim.dynamics = std::move(fresh->dynamics);
+  sim.scene = std::move(fresh->scene);
 }
 
 ProgressiveSimulation& quasistatic_driver(const ps_sim& sim) {
@@ -283,13 +281,9 @@ PS_API int32_t ps_sim_set_handle_motion(ps_sim* sim, int32_t handle, const doubl
   return guarded(error_slot(sim), "ps_sim_set_handle_motion", [&] {
     require_idle(sim);
     require_handle(*sim, handle);
-    HandleMotion motion;
-    motion.velocity = vec3_or(velocity, Vec3::Zero());
-    motion.axis = vec3_or(axis, Vec3::UnitZ());
-    motion.center = vec3_or(center, Vec3::Zero());
-    motion.angular_velocity = angular_velocity;
-    motion.offset = vec3_or(offset, Vec3::Zero());
-    set_motion(*sim, handle, motion);
+    const HandleMotion motion = velocity_motion(velocity, axis, center, angular_velocity, offset,
+                                                handle_motion_name(handle));
+    edit_scene(*sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });
   });
 }
 
@@ -298,18 +292,9 @@ PS_API int32_t ps_sim_set_handle_keyframes(ps_sim* sim, int32_t handle, const do
   return guarded(error_slot(sim), "ps_sim_set_handle_keyframes", [&] {
     require_idle(sim);
     require_handle(*sim, handle);
-    require(rows, "rows");
-    if (num_rows == 0) api_fail(PS_ERROR_INVALID_ARGUMENT, "num_rows = 0: give at least one key");
-    HandleMotion motion;
-    motion.center = sim->scene.handles[handle].motion.center;
-    motion.offset = sim->scene.handles[handle].motion.offset;
-    motion.interpolation = interpolation_from_enum(interpolation);
-    for (std::size_t k = 0; k < num_rows; ++k) {
-      const double* row = rows + 8 * k;  // time, tx, ty, tz, ax, ay, az, angle
-      motion.keyframes.push_back(
-          {row[0], Vec3(row[1], row[2], row[3]), Vec3(row[4], row[5], row[6]), row[7]});
-    }
-    set_motion(*sim, handle, motion);
+    const HandleMotion motion = keyframe_motion(sim->scene.handles[handle].motion, rows, num_rows,
+                                                interpolation, handle_motion_name(handle));
+    edit_scene(*sim, [&](Scene& scene) { scene.handles[handle].motion = motion; });
   });
 }
 

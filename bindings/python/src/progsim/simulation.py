@@ -26,12 +26,14 @@ from ._native import (
     ProgressArg,
     ProgressRun,
     _thread_state,
+    as_faces,
     as_indices,
     as_vertices,
     check_create,
     decode,
     int32_value,
     fetch_rows,
+    index_buffer,
     real_value,
     three_floats,
     vec3,
@@ -800,9 +802,15 @@ class Simulation(NativeObject):
             OutOfRangeError: no such handle.
             InvalidArgumentError: a zero or non-finite axis, a vector without 3 components.
         """
+        self._set_motion(
+            lib.ps_sim_set_handle_motion, handle, "handle", velocity, axis, center,
+            angular_velocity, offset,
+        )
+
+    def _set_motion(self, setter, index, name, velocity, axis, center, angular_velocity, offset):
         self._call(
-            lib.ps_sim_set_handle_motion,
-            int32_value(handle, "handle"),
+            setter,
+            int32_value(index, name),
             vec3(velocity, "velocity"),
             vec3(axis, "axis"),
             vec3(center, "center"),
@@ -846,10 +854,17 @@ class Simulation(NativeObject):
                 times not strictly increasing (the message names the key), an unknown
                 interpolation.
         """
+        self._set_keyframes(
+            lib.ps_sim_set_handle_keyframes, handle, "handle", times, translations, axes,
+            angles, interpolation,
+        )
+
+    def _set_keyframes(self, setter, index, name, times, translations, axes, angles,
+                       interpolation):
         rows = _keyframe_rows(times, translations, axes, angles)
         self._call(
-            lib.ps_sim_set_handle_keyframes,
-            int32_value(handle, "handle"),
+            setter,
+            int32_value(index, name),
             ffi.from_buffer("double[]", rows),
             rows.shape[0],
             _choice(INTERPOLATIONS, interpolation, "interpolation"),
@@ -891,6 +906,151 @@ class Simulation(NativeObject):
             force=np.array(list(out.force), dtype=np.float64),
             moment=np.array(list(out.moment), dtype=np.float64),
             point=np.array(list(out.point), dtype=np.float64),
+        )
+
+    def add_handle(self, vertices: Any, body: int = 0) -> int:
+        """Adds a handle: finest-level vertices of ``body`` held at rest until
+        :meth:`set_handle_motion` or :meth:`set_handle_keyframes` scripts them (scene key
+        ``handles``).
+
+        This rebuilds the simulation, so it is only allowed before the first step, settle or
+        refinement. On a hierarchy of several levels the scene's handles must be the
+        hierarchy's vertex groups (``Hierarchy(..., pinned=...)`` gives one, which
+        ``Simulation(..., pinned=...)`` holds), so this serves single-level simulations.
+
+        Args:
+            vertices: vertex indices within the body's mesh, shape (k,), k >= 1.
+            body: index of the scene's body; default 0.
+
+        Returns:
+            The handle's index (:attr:`num_handles` − 1).
+
+        Raises:
+            InvalidSceneError: no vertices, a vertex or body out of range.
+            WrongCallOrderError: the simulation has stepped.
+            InvalidArgumentError: on several levels, vertices that are not a vertex group of the
+                hierarchy.
+        """
+        indices, buffer = index_buffer(vertices, "vertices")
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_add_handle, int32_value(body, "body"), buffer, indices.size, out)
+        return int(out[0])
+
+    @property
+    def num_obstacles(self) -> int:
+        """Number of obstacles (:meth:`add_obstacle` and the scene's ``"obstacles"``)."""
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_num_obstacles, out)
+        return int(out[0])
+
+    def add_obstacle(
+        self, vertices: Any, faces: Any, *, friction: float = 0.0, progressive: bool = False
+    ) -> int:
+        """Adds a collision object: a triangle mesh moved rigidly by a script, not simulated
+        (scene key ``obstacles``); static until :meth:`set_obstacle_motion` or
+        :meth:`set_obstacle_keyframes`. Needs the ``"contact"`` effect. Like
+        :meth:`add_handle`, only before the first step.
+
+        Args:
+            vertices: world positions at t = 0, m, shape (n, 3).
+            faces: vertex indices, shape (m, 3).
+            friction: Coulomb μ of its surface, in [0, 10]; default 0.
+            progressive: True: coarse levels of a PSQ simulation meet a decimated copy,
+                refined with the shell (PSQ §4.6).
+
+        Returns:
+            The obstacle's index (0, 1, ... in order of addition, after the scene's).
+
+        Raises:
+            InvalidMeshError: the mesh fails validation (names the first bad element).
+            IntersectingError: it crosses the shell at t = 0 or comes within its contact
+                offset.
+            InvalidSceneError: no ``"contact"`` effect, friction out of range.
+            WrongCallOrderError: the simulation has stepped.
+        """
+        vertex_array = as_vertices(vertices)
+        face_array = as_faces(faces)
+        definition = ffi.new("ps_obstacle_def*")
+        lib.ps_obstacle_def_init(definition)
+        definition.vertices = ffi.from_buffer("double[]", vertex_array)
+        definition.num_vertices = vertex_array.shape[0]
+        definition.faces = ffi.from_buffer("int32_t[]", face_array)
+        definition.num_faces = face_array.shape[0]
+        definition.friction = real_value(friction, "friction")
+        definition.progressive = 1 if progressive else 0
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_add_obstacle, definition, out)
+        return int(out[0])
+
+    def set_obstacle_motion(
+        self,
+        obstacle: int,
+        velocity: Optional[Sequence[float]] = None,
+        axis: Optional[Sequence[float]] = None,
+        center: Optional[Sequence[float]] = None,
+        angular_velocity: float = 0.0,
+        offset: Optional[Sequence[float]] = None,
+    ) -> None:
+        """As :meth:`set_handle_motion`, for obstacle ``obstacle`` (its rest positions are
+        those at t = 0).
+
+        Raises:
+            OutOfRangeError: no such obstacle.
+            InvalidArgumentError: a zero or non-finite axis, a vector without 3 components.
+        """
+        self._set_motion(
+            lib.ps_sim_set_obstacle_motion, obstacle, "obstacle", velocity, axis, center,
+            angular_velocity, offset,
+        )
+
+    def set_obstacle_keyframes(
+        self,
+        obstacle: int,
+        times: Any,
+        translations: Any,
+        axes: Optional[Any] = None,
+        angles: Optional[Any] = None,
+        interpolation: str = "linear",
+    ) -> None:
+        """As :meth:`set_handle_keyframes`, for obstacle ``obstacle``; messages name
+        ``obstacles[i].motion.keyframes[k]``.
+
+        Raises:
+            OutOfRangeError: no such obstacle.
+            InvalidArgumentError: as :meth:`set_handle_keyframes`.
+        """
+        self._set_keyframes(
+            lib.ps_sim_set_obstacle_keyframes, obstacle, "obstacle", times, translations, axes,
+            angles, interpolation,
+        )
+
+    def set_ground(
+        self,
+        normal: Sequence[float] = (0.0, 1.0, 0.0),
+        height: float = 0.0,
+        friction: float = 0.0,
+        enabled: bool = True,
+    ) -> None:
+        """Sets the analytic ground, the half-space n·x >= height (scene key ``ground``), or
+        removes it (``enabled=False``). Needs the ``"contact"`` effect; allowed between steps.
+
+        Args:
+            normal: n, pointing to the free side (any length > 0); default +y.
+            height: m, the plane's offset along n.
+            friction: Coulomb μ, in [0, 10]; default 0.
+            enabled: False removes the ground.
+
+        Raises:
+            InvalidArgumentError: a zero or non-finite normal, a non-finite height.
+            InvalidSceneError: friction out of range, no ``"contact"`` effect.
+            IntersectingError: the shell is not above the ground by its contact offset.
+        """
+        self._call(
+            lib.ps_sim_set_ground,
+            1 if enabled else 0,
+            vec3(normal, "normal"),
+            real_value(height, "height"),
+            real_value(friction, "friction"),
         )
 
     @property

@@ -51,6 +51,7 @@ mod def;
 mod error;
 mod hierarchy;
 mod load;
+mod obstacle;
 mod simulation;
 
 use std::cell::Cell;
@@ -69,6 +70,7 @@ pub use def::{
 pub use error::{Error, Result, Status};
 pub use hierarchy::Hierarchy;
 pub use load::{Load, LoadDistribution};
+pub use obstacle::{Ground, Obstacle};
 pub use simulation::Simulation;
 
 /// The C header version these bindings were generated from, packed as

@@ -14,8 +14,8 @@ use progsim_sys as sys;
 use crate::error::{check, check_thread};
 use crate::{
     c_handle, c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
-    Axes, CallbackScope, Effect, Effects, Error, HandleMotion, HandleReaction, Hierarchy,
-    Interpolation, Keyframe, LevelStats, Load, Mode, Result, SimulationDef, Status,
+    Axes, CallbackScope, Effect, Effects, Error, Ground, HandleMotion, HandleReaction, Hierarchy,
+    Interpolation, Keyframe, LevelStats, Load, Mode, Obstacle, Result, SimulationDef, Status,
 };
 
 /// A simulation of one [`Hierarchy`]: preview steps at the current level (starting at level
@@ -206,13 +206,22 @@ impl<'h> Simulation<'h> {
     /// [`Status::OutOfRange`] if the handle does not exist; [`Status::InvalidArgument`] for a
     /// zero or non-finite axis.
     pub fn set_handle_motion(&mut self, handle: usize, motion: &HandleMotion) -> Result<()> {
+        self.set_motion(sys::ps_sim_set_handle_motion, c_handle(handle)?, motion)
+    }
+
+    /// `setter` (ps_sim_set_handle_motion or ps_sim_set_obstacle_motion) on object `index`.
+    fn set_motion(
+        &mut self,
+        setter: MotionSetter,
+        index: i32,
+        motion: &HandleMotion,
+    ) -> Result<()> {
         let raw = self.handle()?;
-        let handle = c_handle(handle)?;
         // SAFETY: live simulation; each vector points to 3 doubles alive for the call.
         let status = unsafe {
-            sys::ps_sim_set_handle_motion(
+            setter(
                 raw,
-                handle,
+                index,
                 motion.velocity.as_ptr(),
                 motion.axis.as_ptr(),
                 motion.center.as_ptr(),
@@ -239,14 +248,24 @@ impl<'h> Simulation<'h> {
         keys: &[Keyframe],
         interpolation: Interpolation,
     ) -> Result<()> {
+        self.set_keyframes(sys::ps_sim_set_handle_keyframes, c_handle(handle)?, keys, interpolation)
+    }
+
+    /// `setter` (ps_sim_set_handle_keyframes or ps_sim_set_obstacle_keyframes) on object `index`.
+    fn set_keyframes(
+        &mut self,
+        setter: KeyframeSetter,
+        index: i32,
+        keys: &[Keyframe],
+        interpolation: Interpolation,
+    ) -> Result<()> {
         let raw = self.handle()?;
-        let handle = c_handle(handle)?;
         let rows: Vec<[f64; 8]> = keys.iter().map(Keyframe::row).collect();
         // SAFETY: live simulation; `rows` holds keys.len() rows of 8 doubles alive for the call.
         let status = unsafe {
-            sys::ps_sim_set_handle_keyframes(
+            setter(
                 raw,
-                handle,
+                index,
                 rows.as_ptr().cast::<f64>(),
                 rows.len(),
                 interpolation.to_raw() as i32,
@@ -287,6 +306,120 @@ impl<'h> Simulation<'h> {
         self.check(status)?;
         // SAFETY: PS_OK, so the struct is filled.
         Ok(HandleReaction::from(unsafe { out.assume_init() }))
+    }
+
+    /// Adds a handle: finest-level `vertices` of body `body` (0 for [`Simulation::new`]), held
+    /// at rest until [`set_handle_motion`](Self::set_handle_motion) or
+    /// [`set_handle_keyframes`](Self::set_handle_keyframes) scripts them; returns its index.
+    /// This rebuilds the simulation, so only before the first step, settle or refinement. On
+    /// a hierarchy of several levels the scene's handles must be the hierarchy's vertex groups
+    /// ([`HierarchyDef`](crate::HierarchyDef)'s pinned vertices, held by
+    /// [`SimulationDef`]'s), so this serves single-level simulations.
+    ///
+    /// # Errors
+    /// [`Status::InvalidScene`] for no vertices or a body or vertex out of range (named);
+    /// [`Status::WrongCallOrder`] after a step; [`Status::InvalidArgument`] on several levels
+    /// for vertices that are not a vertex group of the hierarchy. Nothing changes on error.
+    pub fn add_handle(&mut self, body: usize, vertices: &[i32]) -> Result<usize> {
+        let raw = self.handle()?;
+        let body = i32::try_from(body).map_err(|_| {
+            Error::new(Status::InvalidScene, format!("body index {body} does not exist"))
+        })?;
+        let mut index = 0;
+        // SAFETY: live simulation; `vertices` is alive for the call.
+        let status = unsafe {
+            sys::ps_sim_add_handle(raw, body, vertices.as_ptr(), vertices.len(), &mut index)
+        };
+        self.check(status)?;
+        Ok(count_from(index))
+    }
+
+    /// Number of obstacles ([`add_obstacle`](Self::add_obstacle) and the scene's `"obstacles"`).
+    ///
+    /// # Panics
+    /// Inside a progress closure (the C library forbids calls from callbacks).
+    pub fn num_obstacles(&self) -> usize {
+        let raw = self.handle().unwrap_or_else(|error| panic!("{error}"));
+        let mut obstacles = 0;
+        // SAFETY: live simulation, valid out-pointer.
+        let status = unsafe { sys::ps_sim_num_obstacles(raw, &mut obstacles) };
+        self.check(status).expect("ps_sim_num_obstacles fails only on NULL arguments");
+        count_from(obstacles)
+    }
+
+    /// Adds an obstacle (see [`Obstacle`]), static until
+    /// [`set_obstacle_motion`](Self::set_obstacle_motion) or
+    /// [`set_obstacle_keyframes`](Self::set_obstacle_keyframes); returns its index. Needs
+    /// [`Effect::Contact`](crate::Effect::Contact). Like [`add_handle`](Self::add_handle), only
+    /// before the first step.
+    ///
+    /// # Errors
+    /// [`Status::InvalidMesh`] naming the first bad element; [`Status::Intersecting`] if it
+    /// crosses the shell at t = 0 or comes within its contact offset;
+    /// [`Status::InvalidScene`] without contact or for a friction out of range;
+    /// [`Status::WrongCallOrder`] after a step. Nothing changes on error.
+    pub fn add_obstacle(&mut self, obstacle: &Obstacle) -> Result<usize> {
+        let raw = self.handle()?;
+        let def = obstacle.to_raw();
+        let mut index = 0;
+        // SAFETY: live simulation; def borrows obstacle's arrays, alive for the call.
+        let status = unsafe { sys::ps_sim_add_obstacle(raw, &def, &mut index) };
+        self.check(status)?;
+        Ok(count_from(index))
+    }
+
+    /// As [`set_handle_motion`](Self::set_handle_motion), for obstacle `obstacle` (its rest
+    /// positions are those at t = 0).
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the obstacle does not exist; [`Status::InvalidArgument`] for
+    /// a zero or non-finite axis.
+    pub fn set_obstacle_motion(&mut self, obstacle: usize, motion: &HandleMotion) -> Result<()> {
+        self.set_motion(sys::ps_sim_set_obstacle_motion, c_obstacle(obstacle)?, motion)
+    }
+
+    /// As [`set_handle_keyframes`](Self::set_handle_keyframes), for obstacle `obstacle`;
+    /// messages name `obstacles[i].motion.keyframes[k]`.
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the obstacle does not exist; otherwise as
+    /// [`set_handle_keyframes`](Self::set_handle_keyframes).
+    pub fn set_obstacle_keyframes(
+        &mut self,
+        obstacle: usize,
+        keys: &[Keyframe],
+        interpolation: Interpolation,
+    ) -> Result<()> {
+        self.set_keyframes(
+            sys::ps_sim_set_obstacle_keyframes,
+            c_obstacle(obstacle)?,
+            keys,
+            interpolation,
+        )
+    }
+
+    /// Sets the analytic ground (see [`Ground`]) or removes it (`None`). Needs
+    /// [`Effect::Contact`](crate::Effect::Contact); allowed between steps.
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] for a zero or non-finite normal or height;
+    /// [`Status::InvalidScene`] for a friction out of range or without contact;
+    /// [`Status::Intersecting`] if the shell is not above it by its contact offset. Nothing
+    /// changes on error.
+    pub fn set_ground(&mut self, ground: Option<&Ground>) -> Result<()> {
+        let raw = self.handle()?;
+        let ground_or_default = ground.copied().unwrap_or_default();
+        // SAFETY: live simulation; the normal points to 3 doubles alive for the call.
+        let status = unsafe {
+            sys::ps_sim_set_ground(
+                raw,
+                i32::from(ground.is_some()),
+                ground_or_default.normal.as_ptr(),
+                ground_or_default.height,
+                ground_or_default.friction,
+            )
+        };
+        self.check(status)
     }
 
     /// Number of point and line loads ([`add_load`](Self::add_load) and the scene's `"loads"`).
@@ -586,6 +719,25 @@ impl fmt::Debug for Simulation<'_> {
 }
 
 /// A step count as the C `int32_t`.
+/// The C setters of a handle's or an obstacle's velocity motion.
+type MotionSetter = unsafe extern "C" fn(
+    *mut sys::ps_sim,
+    i32,
+    *const f64,
+    *const f64,
+    *const f64,
+    f64,
+    *const f64,
+) -> i32;
+
+/// The C setters of a handle's or an obstacle's keyframes.
+type KeyframeSetter = unsafe extern "C" fn(*mut sys::ps_sim, i32, *const f64, usize, i32) -> i32;
+
+fn c_obstacle(obstacle: usize) -> Result<i32> {
+    i32::try_from(obstacle)
+        .map_err(|_| Error::new(Status::OutOfRange, format!("obstacle {obstacle} does not exist")))
+}
+
 fn c_steps(steps: u32) -> Result<i32> {
     i32::try_from(steps).map_err(|_| {
         Error::new(Status::InvalidArgument, format!("steps = {steps} exceeds i32::MAX"))
