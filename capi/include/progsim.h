@@ -455,6 +455,39 @@ PS_API int32_t ps_param_count(void);
  *  Errors: PS_ERROR_OUT_OF_RANGE, PS_ERROR_NULL_ARGUMENT (messages in ps_last_error()). */
 PS_API int32_t ps_param_info_get(int32_t index, ps_param_info* out);
 
+/** Description of one named option ps_sim_set_choice() accepts (the choice table; scene keys
+ *  of the same names). Strings are static. */
+typedef struct ps_choice_info {
+  const char* name;           /**< e.g. "progressive.prolongation" */
+  const char* options;        /**< the admissible values separated by '|', e.g. "composed|direct" */
+  const char* default_option; /**< the first of them: what a new simulation uses */
+  const char* doc;            /**< one-sentence description */
+} ps_choice_info;
+
+/** Number of named options ps_sim_set_choice() accepts. Thread-safe. */
+PS_API int32_t ps_choice_count(void);
+
+/** Description of named option `index` in [0, ps_choice_count()) into *out. Thread-safe.
+ *  Errors: PS_ERROR_OUT_OF_RANGE, PS_ERROR_NULL_ARGUMENT (messages in ps_last_error()). */
+PS_API int32_t ps_choice_info_get(int32_t index, ps_choice_info* out);
+
+/**
+ * Sets named option `name` (ps_choice_info_get(), e.g. "progressive.proxy_hessian") to
+ * `value`, one of its options (e.g. "galerkin"); material options apply to every body. Before
+ * the first step, settle or refinement the simulation is rebuilt with it (its kind follows
+ * "simulation.mode"; initial velocities set by ps_sim_set_preview_velocities() are kept);
+ * later it is applied between steps like ps_sim_set_param(), where "progressive.prolongation"
+ * takes effect from the next level on and "simulation.mode" behaves as ps_sim_set_mode().
+ * Errors: PS_ERROR_NULL_ARGUMENT, PS_ERROR_INVALID_ARGUMENT (an unknown name or value: the
+ * message lists the known ones), those of ps_sim_create() for the rebuilt simulation; on
+ * error nothing changed.
+ */
+PS_API int32_t ps_sim_set_choice(ps_sim* sim, const char* name, const char* value);
+
+/** The value of named option `name` into *out (a static string; material options: the
+ *  first body's). Errors: PS_ERROR_NULL_ARGUMENT, PS_ERROR_INVALID_ARGUMENT (unknown name). */
+PS_API int32_t ps_sim_get_choice(const ps_sim* sim, const char* name, const char** out);
+
 /** Switches between dynamic and quasistatic stepping (a ps_mode) between steps; velocities
  *  are zeroed when switching to quasistatic. The simulation keeps its ps_sim_kind: a direct
  *  simulation switches either way, a PSQ simulation refuses PS_MODE_DYNAMIC

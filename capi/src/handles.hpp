@@ -89,6 +89,11 @@ void edit_scene(ps_sim& sim, Edit&& edit) {
 /// the simulation has stepped; on any error nothing changed.
 void rebuild_scene(ps_sim& sim, Scene scene, const char* what);
 
+/// Applies a scene that differs in settings the driver fixes when it is built (the choice
+/// table's options): before the first step by building a new driver (keeping a progressive
+/// animation's initial velocities), later through the driver's update_scene like a parameter.
+void apply_scene(ps_sim& sim, Scene scene);
+
 /// A mesh from the C ABI's borrowed arrays (num_vertices × 3 doubles, num_faces × 3 indices);
 /// throws ApiError(PS_ERROR_NULL_ARGUMENT / PS_ERROR_INVALID_MESH) for NULL arrays or sizes
 /// outside [1, INT32_MAX / 3]. The mesh itself is validated by its user.

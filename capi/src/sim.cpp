@@ -54,6 +54,26 @@ bool started(const ps_sim& sim) {
   return sim.simulation->level() > 0 || first.steps + first.settles > 0;
 }
 
+/// The initial velocities of a progressive animation's preview (empty for other drivers).
+Vector preview_velocities(const ps_sim& sim) {
+  if (!sim.dynamics) return {};
+  Positions positions, velocities;
+  sim.dynamics->read_frame(0, 0, positions, velocities);
+  return as_dofs(velocities);
+}
+
+/// Swaps in a driver built on the simulation's hierarchy for `scene`, keeping a progressive
+/// animation's initial velocities; on error nothing changed.
+void replace_driver(ps_sim& sim, Scene scene) {
+  const Vector velocities = preview_velocities(sim);
+  std::unique_ptr<ps_sim> fresh = build_sim(std::move(scene), sim.hierarchy->shared);
+  if (fresh->dynamics && velocities.size() > 0 && !velocities.isZero(0.0))
+    fresh->dynamics->set_preview_velocities(velocities);
+  sim.simulation = std::move(fresh->simulation);
+  sim.dynamics = std::move(fresh->dynamics);
+  sim.scene = std::move(fresh->scene);
+}
+
 const char* kind_name(ps_sim_kind kind) {
   switch (kind) {
     case PS_SIM_PSQ:
@@ -105,10 +125,14 @@ void rebuild_scene(ps_sim& sim, Scene scene, const char* what) {
              std::string(what) +
                  " changes the scene's structure and is only allowed before the first step, "
                  "settle or refinement (create a new simulation)");
-  std::unique_ptr<ps_sim> fresh = build_sim(std::move(scene), sim.hierarchy->shared);
-  sim.simulation = std::move(fresh->simulation);
-  sim.dynamics = std::move(fresh->dynamics);
-  sim.scene = std::move(fresh->scene);
+  replace_driver(sim, std::move(scene));
+}
+
+void apply_scene(ps_sim& sim, Scene scene) {
+  if (started(sim))
+    edit_scene(sim, [&](Scene& edited) { edited = std::move(scene); });
+  else
+    replace_driver(sim, std::move(scene));
 }
 
 ProgressiveSimulation& quasistatic_driver(const ps_sim& sim) {

@@ -8,6 +8,7 @@
 #include "cli/run_command.hpp"
 #include "common/build_info.hpp"
 #include "common/error.hpp"
+#include "scene/choice_table.hpp"
 #include "scene/parameter_table.hpp"
 
 using namespace progsim;
@@ -30,9 +31,10 @@ int main(int argc, char** argv) {
   app.add_subcommand("info", "print version and build options")->callback([] {
     std::printf("%s", build_info().c_str());
   });
-  app.add_subcommand("params", "print the scene parameter table (Markdown)")->callback([] {
-    std::printf("%s", parameter_table_markdown().c_str());
-  });
+  app.add_subcommand("params", "print the scene parameter and option tables (Markdown)")
+      ->callback([] {
+        std::printf("%s\n%s", parameter_table_markdown().c_str(), choice_table_markdown().c_str());
+      });
   CLI11_PARSE(app, argc, argv);
   try {
     if (run_cmd->parsed()) return cli::run_run_command(run_options);

@@ -11,6 +11,7 @@
 #include "common/error.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "mesh/mesh_io.hpp"
+#include "scene/choice_table.hpp"
 #include "scene/parameter_table.hpp"
 
 namespace progsim {
@@ -175,6 +176,17 @@ Enum choice(const Json& j, const std::string& key, const std::string& where,
   scene_error(where + "." + key, "unknown '" + name + "' (known: " + names + ")");
 }
 
+/// The named option group.key of the choice table (choices.def) that j[key] gives, the
+/// table's default when j has no key; scene_error naming the known ones otherwise.
+template <typename Enum>
+Enum table_choice(const Json& j, const char* group, const char* key, const std::string& where) {
+  const ChoiceSpec& spec = find_choice(group, key);
+  if (!j.contains(key)) return static_cast<Enum>(0);
+  const std::string label = where + "." + key;
+  if (!j.at(key).is_string()) scene_error(label, "must be a string, one of the known options");
+  return static_cast<Enum>(choice_index(spec, j.at(key).get<std::string>(), label));
+}
+
 ShellMaterial material(const Json& j, const std::string& where) {
   expect_keys(j, where,
               {"youngs_modulus", "bending_youngs_modulus", "poisson_ratio", "thickness", "density",
@@ -187,9 +199,7 @@ ShellMaterial material(const Json& j, const std::string& where) {
   m.density = parameter(j, "material", "density", where);
   m.friction = parameter(j, "material", "friction", where);
   m.strain_limit = parameter(j, "material", "strain_limit", where);
-  m.bending_model =
-      choice<BendingModel>(j, "bending_model", where,
-                           {{"hinge", BendingModel::hinge}, {"midedge", BendingModel::midedge}});
+  m.bending_model = table_choice<BendingModel>(j, "material", "bending_model", where);
   return m;
 }
 
@@ -229,10 +239,6 @@ std::vector<int> box_selection(const Json& j, const Positions& p, const std::str
   }
   return selected;
 }
-
-template <typename Enum>
-Enum choice(const Json& j, const std::string& key, const std::string& where,
-            std::initializer_list<std::pair<const char*, Enum>> known);
 
 MotionKeyframe motion_keyframe(const Json& j, const std::string& where) {
   expect_keys(j, where, {"time", "translation", "axis", "angle"});
@@ -402,13 +408,7 @@ void contact(const Json& j, Scene& scene) {
 void simulation(const Json& j, Scene& scene) {
   const std::string where = "simulation";
   expect_keys(j, where, {"mode", "time_step", "duration", "output_every", "gravity_ramp"});
-  const std::string mode = j.value("mode", std::string("dynamic"));
-  if (mode == "dynamic")
-    scene.mode = StepMode::dynamic;
-  else if (mode == "quasistatic")
-    scene.mode = StepMode::quasistatic;
-  else
-    scene_error(where + ".mode", "unknown mode '" + mode + "' (known: dynamic, quasistatic)");
+  scene.mode = table_choice<StepMode>(j, "simulation", "mode", where);
   scene.time_step = parameter(j, "simulation", "time_step", where);
   scene.duration = parameter(j, "simulation", "duration", where);
   scene.output_every = static_cast<int>(parameter(j, "simulation", "output_every", where));
@@ -478,21 +478,10 @@ ProgressiveSettings progressive(const Json& j) {
     p.proximal = j.at("proximal").get<bool>();
   else
     p.proximal = parameter(j, "progressive", "proximal", where) != 0.0;
-  p.prolongation = choice<ProxyProlongation>(
-      j, "prolongation", where,
-      {{"composed", ProxyProlongation::composed}, {"direct", ProxyProlongation::direct}});
-  p.hessian = choice<ProxyHessian>(j, "proxy_hessian", where,
-                                   {{"auto", ProxyHessian::automatic},
-                                    {"level", ProxyHessian::level},
-                                    {"galerkin", ProxyHessian::galerkin}});
-  p.preview_membrane = choice<MembraneModel>(j, "preview_membrane", where,
-                                             {{"neo_hookean", MembraneModel::neo_hookean},
-                                              {"tension_field", MembraneModel::tension_field}});
-  p.prediction =
-      choice<DynamicsPrediction>(j, "prediction", where,
-                                 {{"velocity_only", DynamicsPrediction::velocity_only},
-                                  {"prolonged_positions", DynamicsPrediction::prolonged_positions},
-                                  {"per_frame", DynamicsPrediction::per_frame}});
+  p.prolongation = table_choice<ProxyProlongation>(j, "progressive", "prolongation", where);
+  p.hessian = table_choice<ProxyHessian>(j, "progressive", "proxy_hessian", where);
+  p.preview_membrane = table_choice<MembraneModel>(j, "progressive", "preview_membrane", where);
+  p.prediction = table_choice<DynamicsPrediction>(j, "progressive", "prediction", where);
   if (j.contains("levels")) {
     const Json& levels = j.at("levels");
     if (!levels.is_array()) scene_error(where + ".levels", "must be an array of vertex counts");

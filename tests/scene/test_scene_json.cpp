@@ -167,7 +167,8 @@ TEST(SceneJson, RejectsUnknownEffectsKeysAndModes) {
   expect_scene_error(scene_text("", "", R"(["membrane", "magnetism"])"),
                      "unknown effect 'magnetism'");
   expect_scene_error(scene_text(R"(, "material": {"thicknes": 0.001})"), "unknown key 'thicknes'");
-  expect_scene_error(scene_text("", R"(, "simulation": {"mode": "fast"})"), "unknown mode 'fast'");
+  expect_scene_error(scene_text("", R"(, "simulation": {"mode": "fast"})"),
+                     "simulation.mode: unknown 'fast' (known: dynamic, quasistatic)");
   expect_scene_error(scene_text("", R"(, "simulation": {"time_step": 0})"), "simulation.time_step");
   expect_scene_error(scene_text("", R"(, "solver": {"max_newton_iterations": 2.5})"),
                      "whole number");

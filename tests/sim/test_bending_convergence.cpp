@@ -26,18 +26,18 @@ using namespace progsim;
 
 namespace {
 
-constexpr double kLength = 0.5, kWidth = 0.1, kThickness = 1e-3, kModulus = 1e11;
-constexpr double kDensity = 1000.0, kGravity = 9.81;
+constexpr double kBeamLength = 0.5, kBeamWidth = 0.1, kBeamThickness = 1e-3, kBeamModulus = 1e11;
+constexpr double kBeamDensity = 1000.0, kBeamGravity = 9.81;
 
 enum class GridPattern { alternating, one_diagonal, perturbed };
 
-/// A kLength × kWidth strip of nx × nx/5 quads: make_grid's alternating diagonals, every quad
-/// split along the same diagonal, or the alternating grid with its interior vertices beyond the
-/// clamp moved in-plane by up to 0.2 of a cell (a fixed seed).
+/// A kBeamLength × kBeamWidth strip of nx × nx/5 quads: make_grid's alternating diagonals, every
+/// quad split along the same diagonal, or the alternating grid with its interior vertices beyond
+/// the clamp moved in-plane by up to 0.2 of a cell (a fixed seed).
 TriangleMesh strip_mesh(int nx, GridPattern pattern) {
   const int ny = nx / 5;
-  TriangleMesh mesh = make_grid(kLength, kWidth, nx, ny);
-  const double hx = kLength / nx, hy = kWidth / ny;
+  TriangleMesh mesh = make_grid(kBeamLength, kBeamWidth, nx, ny);
+  const double hx = kBeamLength / nx, hy = kBeamWidth / ny;
   if (pattern == GridPattern::one_diagonal) {
     int f = 0;
     for (int j = 0; j < ny; ++j)
@@ -64,10 +64,10 @@ TriangleMesh strip_mesh(int nx, GridPattern pattern) {
 double tip_over_theory(int nx, GridPattern pattern, BendingModel model) {
   const TriangleMesh mesh = strip_mesh(nx, pattern);
   ShellMaterial m;
-  m.youngs_modulus = kModulus;
+  m.youngs_modulus = kBeamModulus;
   m.poisson_ratio = 0.0;
-  m.thickness = kThickness;
-  m.density = kDensity;
+  m.thickness = kBeamThickness;
+  m.density = kBeamDensity;
   m.bending_model = model;
   const std::vector<ShellMaterial> materials(mesh.num_faces(), m);
   const std::vector<Hinge> hinges = build_topology(mesh.faces, mesh.num_vertices()).hinges;
@@ -79,8 +79,8 @@ double tip_over_theory(int nx, GridPattern pattern, BendingModel model) {
   else
     problem.add_term(std::make_unique<HingeBending>(mesh.vertices, mesh.faces, hinges, materials));
   problem.add_term(std::make_unique<Gravity>(
-      lumped_vertex_masses(mesh.vertices, mesh.faces, materials), Vec3(0, 0, -kGravity)));
-  const double a = kLength / nx;
+      lumped_vertex_masses(mesh.vertices, mesh.faces, materials), Vec3(0, 0, -kBeamGravity)));
+  const double a = kBeamLength / nx;
   std::vector<bool> fixed(3 * mesh.num_vertices(), false);
   for (int v = 0; v < mesh.num_vertices(); ++v)
     if (mesh.vertices(v, 0) <= a * (1.0 + 1e-9))
@@ -94,15 +94,15 @@ double tip_over_theory(int nx, GridPattern pattern, BendingModel model) {
   NewtonSolver solver;
   const NewtonReport report = solver.minimize(problem, x, settings, 1.0, 1.0);
   EXPECT_EQ(report.stop, NewtonStop::converged) << stop_name(report.stop);
-  const double free_length = kLength - a;
-  const double ei = kModulus * std::pow(kThickness, 3) / 12.0;        // per unit width
-  const double q = kDensity * kThickness * kGravity;                  // N/m²
-  const double expected = q * std::pow(free_length, 4) / (8.0 * ei);  // Euler–Bernoulli
+  const double free_length = kBeamLength - a;
+  const double ei = kBeamModulus * std::pow(kBeamThickness, 3) / 12.0;  // per unit width
+  const double q = kBeamDensity * kBeamThickness * kBeamGravity;        // N/m²
+  const double expected = q * std::pow(free_length, 4) / (8.0 * ei);    // Euler–Bernoulli
   EXPECT_LT(expected / free_length, 0.05) << "not a small deflection";
   double tip = 0.0;
   int count = 0;
   for (int v = 0; v < mesh.num_vertices(); ++v)
-    if (mesh.vertices(v, 0) >= kLength * (1.0 - 1e-9)) {
+    if (mesh.vertices(v, 0) >= kBeamLength * (1.0 - 1e-9)) {
       tip += -x[3 * v + 2];
       ++count;
     }
@@ -141,7 +141,7 @@ TEST(BendingConvergence, MidedgeCantileverConvergesToBeamTheoryOnRegularGrids) {
       const double hinge = tip_over_theory(nx, pattern, BendingModel::hinge);
       const double midedge = tip_over_theory(nx, pattern, BendingModel::midedge);
       const double half_cell =  // (L − a/2)⁴ / (L − a)⁴
-          std::pow((kLength - 0.5 * kLength / nx) / (kLength - kLength / nx), 4);
+          std::pow((kBeamLength - 0.5 * kBeamLength / nx) / (kBeamLength - kBeamLength / nx), 4);
       std::printf("[ bending  ] %-13s %4d %9.4f %9.4f %16.4f\n", pattern_name(pattern), nx, hinge,
                   midedge, midedge / half_cell);
       const double error = std::abs(midedge - 1.0);

@@ -152,3 +152,43 @@ def test_bad_objects_are_refused_and_change_nothing(plate_file):
                 sim.add_handle([24])
             sim.set_ground(normal=(0, 0, 1), height=-0.5)  # between steps: allowed
             sim.step_preview(1)
+
+
+def test_named_options_from_keywords_equal_the_scene_file():
+    clamp = list(range(10))
+    scene = {
+        "simulation": {"mode": "quasistatic"},
+        "gravity": [0, 0, -9.81],
+        "effects": ["membrane", "bending", "gravity"],
+        "bodies": [
+            {
+                "mesh": {"generator": "grid", "width": 0.4, "height": 0.4, "nx": 4, "ny": 4},
+                "material": {"bending_model": "midedge"},
+            }
+        ],
+        "handles": [{"body": 0, "vertices": clamp}],
+        "progressive": {"levels": [12], "proxy_hessian": "galerkin", "prolongation": "direct"},
+    }
+    assert progsim.CHOICES["progressive.proxy_hessian"] == ("auto", "level", "galerkin")
+    with progsim.Simulation.from_scene(scene) as json_sim:
+        with progsim.Simulation(
+            json_sim.hierarchy,
+            mode="quasistatic",
+            gravity=(0, 0, -9.81),
+            pinned=clamp,
+            bending_model="midedge",
+            proxy_hessian="galerkin",
+            prolongation="direct",
+        ) as sim:
+            assert sim.choice("progressive.prolongation") == "direct"
+            assert sim.choice("progressive.preview_membrane") == "neo_hookean"  # the default
+            for each in (json_sim, sim):
+                each.step_preview(1)
+                each.refine()
+                each.step_preview(1)
+            assert np.array_equal(sim.positions(1), json_sim.positions(1))
+            assert sim.positions(1)[24, 2] < -1e-3
+            with pytest.raises(progsim.InvalidArgumentError, match=r"known: auto, level, galerkin"):
+                sim.set_choice("progressive.proxy_hessian", "exact")
+            with pytest.raises(progsim.InvalidArgumentError, match="unknown option"):
+                sim.choice("smoothing")

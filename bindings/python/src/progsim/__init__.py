@@ -55,6 +55,7 @@ if _lib.ps_check_version(HEADER_VERSION) != _lib.PS_OK:
 from .accuracy import Accuracy, AccuracyRow  # noqa: E402 - after the version check
 from .hierarchy import Hierarchy  # noqa: E402
 from .simulation import (  # noqa: E402
+    CHOICES,
     EFFECTS,
     INTERPOLATIONS,
     KINDS,
@@ -95,6 +96,7 @@ __all__ = [
     "Frame",
     "HandleReaction",
     "STEP_STATS_DTYPE",
+    "CHOICES",
     "EFFECTS",
     "INTERPOLATIONS",
     "KINDS",

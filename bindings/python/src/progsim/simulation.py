@@ -130,6 +130,30 @@ def _parameter_names() -> Tuple[str, ...]:
 
 PARAMETERS: Tuple[str, ...] = _parameter_names()
 
+
+def _choice_table() -> Dict[str, Tuple[str, ...]]:
+    """Every named option ps_sim_set_choice accepts with its values, the default first."""
+    info = ffi.new("ps_choice_info*")
+    table = {}
+    for index in range(lib.ps_choice_count()):
+        if lib.ps_choice_info_get(index, info) == lib.PS_OK:
+            options = ffi.string(info.options).decode("ascii").split("|")
+            table[ffi.string(info.name).decode("ascii")] = tuple(options)
+    return table
+
+
+#: Named options of :meth:`Simulation.set_choice` (the choice table, scene keys of the same
+#: names) → their values, the default first.
+CHOICES: Dict[str, Tuple[str, ...]] = _choice_table()
+
+#: Keywords of :class:`Simulation` that set named options.
+_CHOICE_KEYWORDS = {
+    "bending_model": "material.bending_model",
+    "prolongation": "progressive.prolongation",
+    "proxy_hessian": "progressive.proxy_hessian",
+    "preview_membrane": "progressive.preview_membrane",
+}
+
 #: Short names accepted by set_param/get_param: ``thickness`` → ``material.thickness``.
 _ALIASES: Dict[str, str] = {
     short: field.replace("_", ".", 1) for short, field in _DEF_FIELDS.items()
@@ -365,6 +389,16 @@ def _keyframe_rows(
     return np.ascontiguousarray(np.column_stack([time, translation, axis, angle]))
 
 
+def _ascii(text: str, what: str) -> bytes:
+    """``text`` as the C string of an option name or value."""
+    if not isinstance(text, str):
+        raise InvalidArgumentError(f"{what} must be a str, got {text!r}")
+    try:
+        return text.encode("ascii")
+    except UnicodeEncodeError:
+        raise InvalidArgumentError(f"{what} {text!r} is not ASCII") from None
+
+
 def _parameter_name(name: str) -> bytes:
     if not isinstance(name, str):
         raise InvalidArgumentError(f"a parameter name must be a str, got {name!r}")
@@ -424,6 +458,10 @@ class Simulation(NativeObject):
         wind_density: Optional[float] = None,
         wind_drag: Optional[float] = None,
         wind_lift: Optional[float] = None,
+        bending_model: Optional[str] = None,
+        prolongation: Optional[str] = None,
+        proxy_hessian: Optional[str] = None,
+        preview_membrane: Optional[str] = None,
     ) -> None:
         """Creates a simulation of ``hierarchy``, at rest on level 0.
 
@@ -491,9 +529,13 @@ class Simulation(NativeObject):
             wind_density: air density, kg/m³, in (0, 1e4]; default 1.2.
             wind_drag: drag coefficient C_d of each face, in [0, 100]; default 1.2.
             wind_lift: lift coefficient C_L of each face, in [0, 100]; default 0 (no lift).
+            bending_model, prolongation, proxy_hessian, preview_membrane: named options
+                (:data:`CHOICES` ``material.bending_model``, ``progressive.prolongation``,
+                ``progressive.proxy_hessian``, ``progressive.preview_membrane``), set with
+                :meth:`set_choice` once created; default the table's.
 
         Raises:
-            InvalidArgumentError: a value out of range, an unknown mode or effect.
+            InvalidArgumentError: a value out of range, an unknown mode, effect or option.
             InvalidSceneError: a pinned vertex out of range.
             ClosedError: ``hierarchy`` is closed.
         """
@@ -583,6 +625,15 @@ class Simulation(NativeObject):
 
         self._cdata = ffi.gc(out[0], destroy)
         self._hierarchy = hierarchy
+        named = {
+            "bending_model": bending_model,
+            "prolongation": prolongation,
+            "proxy_hessian": proxy_hessian,
+            "preview_membrane": preview_membrane,
+        }
+        for keyword, value in named.items():
+            if value is not None:
+                self.set_choice(_CHOICE_KEYWORDS[keyword], value)
 
     @classmethod
     def from_scene(
@@ -710,6 +761,29 @@ class Simulation(NativeObject):
         if key.decode() in _INTEGER_PARAMETERS:
             return int(out[0])
         return float(out[0])
+
+    def set_choice(self, name: str, value: str) -> None:
+        """Sets named option ``name`` (a :data:`CHOICES` key, e.g.
+        ``"progressive.proxy_hessian"``) to ``value``, one of its values.
+
+        Before the first step, settle or refinement the simulation is rebuilt with it (its
+        kind follows ``"simulation.mode"``); later it applies between steps like
+        :meth:`set_param` (``"progressive.prolongation"`` from the next level on).
+
+        Raises:
+            InvalidArgumentError: an unknown name or value (the message lists the known ones).
+        """
+        self._call(lib.ps_sim_set_choice, _ascii(name, "name"), _ascii(value, "value"))
+
+    def choice(self, name: str) -> str:
+        """The value of named option ``name`` (material options: the first body's).
+
+        Raises:
+            InvalidArgumentError: an unknown name.
+        """
+        out = ffi.new("char**")
+        self._call(lib.ps_sim_get_choice, _ascii(name, "name"), out)
+        return ffi.string(out[0]).decode("ascii")
 
     @property
     def gravity(self) -> Tuple[float, float, float]:

@@ -89,6 +89,42 @@ pub fn library_version_string() -> &'static str {
     unsafe { error::static_str(sys::ps_version_string()) }
 }
 
+/// One named option of [`Simulation::set_choice`] (the choice table; scene keys of the same
+/// names).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ChoiceInfo {
+    /// `"group.name"`, e.g. `"progressive.prolongation"`.
+    pub name: &'static str,
+    /// The admissible values; the first is the default.
+    pub options: Vec<&'static str>,
+    /// One-sentence description.
+    pub doc: &'static str,
+}
+
+/// Every named option the library knows, in table order.
+pub fn choices() -> Vec<ChoiceInfo> {
+    // SAFETY: no arguments; thread-safe.
+    let count = unsafe { sys::ps_choice_count() };
+    (0..count)
+        .filter_map(|index| {
+            let mut info = std::mem::MaybeUninit::<sys::ps_choice_info>::uninit();
+            // SAFETY: index in range, valid out-pointer; on PS_OK every field is a static string.
+            unsafe {
+                (sys::ps_choice_info_get(index, info.as_mut_ptr()) == sys::PS_OK as i32).then(
+                    || {
+                        let info = info.assume_init();
+                        ChoiceInfo {
+                            name: error::static_str(info.name),
+                            options: error::static_str(info.options).split('|').collect(),
+                            doc: error::static_str(info.doc),
+                        }
+                    },
+                )
+            }
+        })
+        .collect()
+}
+
 /// Checks once per process that the loaded library can serve these bindings (same major
 /// version, library minor version at least the header's); later calls return the first
 /// answer. [`Hierarchy`] and scene constructors call it, so calling it yourself is only

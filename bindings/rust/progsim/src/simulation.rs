@@ -11,7 +11,7 @@ use std::ptr::{self, NonNull};
 
 use progsim_sys as sys;
 
-use crate::error::{check, check_thread};
+use crate::error::{check, check_thread, static_str};
 use crate::{
     c_handle, c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
     Axes, CallbackScope, Effect, Effects, Error, Ground, HandleMotion, HandleReaction, Hierarchy,
@@ -133,6 +133,39 @@ impl<'h> Simulation<'h> {
         let status = unsafe { sys::ps_sim_get_param(raw, name.as_ptr(), &mut value) };
         self.check(status)?;
         Ok(value)
+    }
+
+    /// Sets a named option by name to one of its values (see [`choices`](crate::choices):
+    /// `"material.bending_model"`, `"progressive.proxy_hessian"`, …). Before the first
+    /// step, settle or refinement the simulation is rebuilt with it (its kind follows
+    /// `"simulation.mode"`); later it applies between steps like [`set_param`](Self::set_param)
+    /// (`"progressive.prolongation"` from the next level on).
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] for an unknown name or value (the message lists the known
+    /// ones); the simulation is then unchanged.
+    pub fn set_choice(&mut self, name: &str, value: &str) -> Result<()> {
+        let raw = self.handle()?;
+        let name = c_string(name, "option name")?;
+        let value = c_string(value, "option value")?;
+        // SAFETY: live simulation, NUL-terminated strings.
+        let status = unsafe { sys::ps_sim_set_choice(raw, name.as_ptr(), value.as_ptr()) };
+        self.check(status)
+    }
+
+    /// The value of a named option (material options: the first body's).
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] for an unknown name.
+    pub fn choice(&self, name: &str) -> Result<&'static str> {
+        let raw = self.handle()?;
+        let name = c_string(name, "option name")?;
+        let mut value = ptr::null();
+        // SAFETY: live simulation, NUL-terminated name, valid out-pointer.
+        let status = unsafe { sys::ps_sim_get_choice(raw, name.as_ptr(), &mut value) };
+        self.check(status)?;
+        // SAFETY: on PS_OK the library returned one of its static option strings.
+        Ok(unsafe { static_str(value) })
     }
 
     /// Enables or disables one effect between steps.

@@ -126,3 +126,41 @@ fn bad_objects_are_refused_and_change_nothing() {
     sim.set_ground(None).expect("removing the ground between steps");
     sim.step_preview(1).unwrap();
 }
+
+#[test]
+fn named_options_set_in_code_equal_the_scene_file() {
+    const OPTIONS: &str = r#"{
+      "simulation": { "mode": "quasistatic" }, "gravity": [0, 0, -9.81],
+      "effects": ["membrane", "bending", "gravity"],
+      "bodies": [ { "mesh": { "generator": "grid", "width": 0.4, "height": 0.4, "nx": 4, "ny": 4 },
+                    "material": { "bending_model": "midedge" } } ],
+      "handles": [ { "body": 0, "vertices": [0, 1, 2, 3, 4, 5, 6, 7, 8, 9] } ],
+      "progressive": { "levels": [12], "proxy_hessian": "galerkin", "prolongation": "direct" }
+    }"#;
+    let table = progsim::choices();
+    let hessian = table.iter().find(|c| c.name == "progressive.proxy_hessian").unwrap();
+    assert_eq!(hessian.options, ["auto", "level", "galerkin"]);
+    let mut from_json = Simulation::from_scene(OPTIONS, None).expect("valid scene");
+    from_json.step_preview(1).unwrap();
+    from_json.refine().unwrap();
+    from_json.step_preview(1).unwrap();
+    let own = from_json.hierarchy().unwrap();
+    let def = SimulationDef {
+        mode: progsim::Mode::Quasistatic,
+        gravity: [0.0, 0.0, -9.81],
+        pinned_vertices: (0..10).collect(),
+        ..SimulationDef::default()
+    };
+    let mut sim = Simulation::new(own, &def).expect("valid def");
+    sim.set_choice("material.bending_model", "midedge").unwrap();
+    sim.set_choice("progressive.proxy_hessian", "galerkin").unwrap();
+    sim.set_choice("progressive.prolongation", "direct").unwrap();
+    assert_eq!(sim.choice("progressive.prolongation"), Ok("direct"));
+    let error = sim.set_choice("progressive.proxy_hessian", "exact").unwrap_err();
+    assert_eq!(error.code(), Status::InvalidArgument);
+    assert!(error.message().contains("known: auto, level, galerkin"), "{error}");
+    sim.step_preview(1).unwrap();
+    sim.refine().unwrap();
+    sim.step_preview(1).unwrap();
+    assert_eq!(sim.positions(1).unwrap(), from_json.positions(1).unwrap());
+}
