@@ -50,6 +50,7 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
   sum.exact_steps += total.exact_steps;
   sum.cg_iterations += total.cg_iterations;
   sum.extrapolated_steps += total.extrapolated_steps;
+  sum.capped_steps += total.capped_steps;
   sum.max_shift = std::max(total.max_shift, part.max_shift);
   sum.timings.assembly += total.timings.assembly;
   sum.timings.factorization += total.timings.factorization;

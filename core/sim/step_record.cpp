@@ -25,6 +25,7 @@ std::string to_json_line(const StepRecord& r) {
                          {"exact_hessian_iterations", n.exact_steps},
                          {"cg_iterations", n.cg_iterations},
                          {"extrapolated_steps", n.extrapolated_steps},
+                         {"capped_steps", n.capped_steps},
                          {"phase_seconds",
                           {{"assembly", n.timings.assembly},
                            {"factorization", n.timings.factorization},

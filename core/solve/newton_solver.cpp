@@ -53,6 +53,10 @@ constexpr double kExtrapolationRatio = 1.5;
 /// Doublings of α at most (α ≤ 1024) per step.
 constexpr int kMaxDoublings = 10;
 
+/// A step the line search refused is retried shortened to this fraction of the scene's
+/// length (capped_line_search).
+constexpr double kFallbackStepFraction = 0.1;
+
 /// A term that reuses an earlier Hessian (EnergyTerm::refresh_hessian) reassembles once a
 /// Newton step is longer than this fraction of the previous one: a chord method contracting
 /// slower than that pays for a fresh matrix (Kelley 2003, §2.3, Shamanskii's method with the
@@ -99,6 +103,28 @@ bool NewtonSolver::line_search(Problem& problem, const Vector& x, double energy,
       return true;  // Armijo condition
   }
   return false;
+}
+
+/// Retries a failed line search with the step shortened to kFallbackStepFraction of the
+/// scene's length. A Hessian that is singular along a mechanism (a sheet hinged on one line of
+/// handles: rotating about the line costs no elastic energy, and quasistatics has no inertia)
+/// factorizes with a tiny pivot and gives a step of ~1e15 m that 40 halvings cannot bring back
+/// to the scene; its direction is still a descent direction for a PSD Hessian (gᵀH⁻¹g > 0), and
+/// along a mechanism it is the motion the load drives. Steps a line search accepts are never
+/// shortened, so converging solves are unchanged. @return true if the shortened step was taken.
+bool NewtonSolver::capped_line_search(Problem& problem, const Vector& x, double energy,
+                                      const NewtonSettings& settings, double length, double& alpha,
+                                      double& new_energy, NewtonReport& report) {
+  const double cap = kFallbackStepFraction * length;
+  if (!(report.step_norm > cap) || !std::isfinite(report.step_norm)) return false;
+  const double scale = cap / report.step_norm;
+  step_ *= scale;
+  step_free_ *= scale;
+  report.step_norm = cap;
+  const double slope = gradient_free_.dot(step_free_);
+  if (!(slope < 0.0)) return false;
+  ++report.capped_steps;
+  return line_search(problem, x, energy, slope, settings, alpha, new_energy);
 }
 
 void NewtonSolver::analyze_if_needed(const Problem& problem, const Problem::SparseMatrix& h) {
@@ -231,7 +257,8 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
     ScopedTimer timer(time.line_search);
     double alpha = 1.0, new_energy = energy;
     const double slope = gradient_free_.dot(step_free_);
-    if (!line_search(problem, x, energy, slope, settings, alpha, new_energy)) {
+    if (!line_search(problem, x, energy, slope, settings, alpha, new_energy) &&
+        !capped_line_search(problem, x, energy, settings, length, alpha, new_energy, report)) {
       report.stop = NewtonStop::line_search_failed;
       break;
     }

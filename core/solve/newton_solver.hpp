@@ -94,6 +94,7 @@ struct NewtonReport {
   int exact_steps = 0;         ///< iterations that used the exact (unprojected) Hessian
   int cg_iterations = 0;       ///< CG iterations refining projected steps (truncated_newton)
   int extrapolated_steps = 0;  ///< whole steps the line search lengthened (extrapolate)
+  int capped_steps = 0;        ///< refused steps retried shortened (a mechanism, e.g. a hinge)
   NewtonTimings timings;
 };
 
@@ -117,6 +118,9 @@ class NewtonSolver {
                    const NewtonSettings& settings, double& alpha, double& new_energy);
   bool extrapolate(Problem& problem, const Vector& x, double energy, double slope, double& alpha,
                    double& new_energy);
+  bool capped_line_search(Problem& problem, const Vector& x, double energy,
+                          const NewtonSettings& settings, double length, double& alpha,
+                          double& new_energy, NewtonReport& report);
 
   SparseCholesky cholesky_;
   const Problem* analyzed_for_ = nullptr;
