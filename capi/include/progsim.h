@@ -460,7 +460,7 @@ PS_API int32_t ps_param_info_get(int32_t index, ps_param_info* out);
 typedef struct ps_choice_info {
   const char* name;           /**< e.g. "progressive.prolongation" */
   const char* options;        /**< the admissible values separated by '|', e.g. "composed|direct" */
-  const char* default_option; /**< the first of them: what a new simulation uses */
+  const char* default_option; /**< one of them: what a new simulation uses */
   const char* doc;            /**< one-sentence description */
 } ps_choice_info;
 

@@ -31,8 +31,8 @@ const std::vector<ps_choice_info>& choice_infos() {
     std::vector<ps_choice_info> all;
     const std::vector<ChoiceSpec>& table = choice_table();
     for (std::size_t i = 0; i < table.size(); ++i)
-      all.push_back(
-          {names[i].c_str(), options[i].c_str(), table[i].options.front().c_str(), table[i].doc});
+      all.push_back({names[i].c_str(), options[i].c_str(),
+                     table[i].options[table[i].default_index].c_str(), table[i].doc});
     return all;
   }();
   return infos;

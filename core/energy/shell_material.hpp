@@ -22,7 +22,8 @@ struct ShellMaterial {
   double density = 200.0;      ///< ρ, kg/m³ (volumetric; areal density is ρ t)
   double friction = 0.0;       ///< Coulomb μ of the surface (contact pairs mix √(μ_a μ_b))
   double strain_limit = 0.0;   ///< s_max > 1: cap on membrane principal stretches; 0: none
-  BendingModel bending_model = BendingModel::hinge;  ///< one per scene (all bodies agree)
+  /// one per scene (all bodies agree); the default is choices.def's
+  BendingModel bending_model = BendingModel::hinge;
 };
 
 /// Shear modulus μ = E / (2(1+ν)).

@@ -20,11 +20,24 @@ std::string joined(const std::vector<std::string>& names, const char* separator)
   return text;
 }
 
+/// spec with default_index set to the option named `default_option` (a typo in choices.def
+/// fails on first use of the table, in every test).
+ChoiceSpec with_default(ChoiceSpec spec, const std::string& default_option) {
+  spec.default_index = -1;
+  for (std::size_t k = 0; k < spec.options.size(); ++k)
+    if (spec.options[k] == default_option) spec.default_index = static_cast<int>(k);
+  if (spec.default_index < 0)
+    fail(Status::internal, std::string("choices.def: ") + spec.group + "." + spec.name +
+                               "'s default '" + default_option + "' is not one of its options");
+  return spec;
+}
+
 }  // namespace
 
 const std::vector<ChoiceSpec>& choice_table() {
   static const std::vector<ChoiceSpec> table = {
-#define PROGSIM_CHOICE(group, name, options, doc) {#group, #name, split_options(options), doc},
+#define PROGSIM_CHOICE(group, name, options, default_option, doc) \
+  with_default({#group, #name, split_options(options), 0, doc}, default_option),
 #include "scene/choices.def"
 #undef PROGSIM_CHOICE
   };
@@ -54,7 +67,7 @@ std::string choice_table_markdown() {
   out << "| option | values | default | meaning |\n|---|---|---|---|\n";
   for (const ChoiceSpec& s : choice_table())
     out << "| `" << s.group << "." << s.name << "` | `" << joined(s.options, "`, `") << "` | `"
-        << s.options.front() << "` | " << s.doc << " |\n";
+        << s.options[s.default_index] << "` | " << s.doc << " |\n";
   return out.str();
 }
 

@@ -7,11 +7,12 @@
 
 namespace progsim {
 
-/// One named option of a scene: its admissible names (the first the default) and its doc.
+/// One named option of a scene: its admissible names, which of them is the default, its doc.
 struct ChoiceSpec {
   const char* group;  ///< "simulation", "material", "progressive"
   const char* name;
   std::vector<std::string> options;  ///< in the order of the C++ enum's values
+  int default_index;                 ///< the option a scene that does not name one gets
   const char* doc;
 };
 

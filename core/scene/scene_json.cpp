@@ -181,7 +181,7 @@ Enum choice(const Json& j, const std::string& key, const std::string& where,
 template <typename Enum>
 Enum table_choice(const Json& j, const char* group, const char* key, const std::string& where) {
   const ChoiceSpec& spec = find_choice(group, key);
-  if (!j.contains(key)) return static_cast<Enum>(0);
+  if (!j.contains(key)) return static_cast<Enum>(spec.default_index);
   const std::string label = where + "." + key;
   if (!j.at(key).is_string()) scene_error(label, "must be a string, one of the known options");
   return static_cast<Enum>(choice_index(spec, j.at(key).get<std::string>(), label));

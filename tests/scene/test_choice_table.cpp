@@ -32,7 +32,8 @@ TEST(ChoiceTable, EveryOptionReadFromAFileEqualsTheSameSetInCode) {
   const Scene defaults = parse_scene(scene_with("progressive", "prolongation", "composed"), ".");
   for (const ChoiceSpec& spec : choice_table()) {
     const std::string name = std::string(spec.group) + "." + spec.name;
-    EXPECT_EQ(scene_choice(defaults, name), spec.options.front()) << name << ": the default";
+    EXPECT_EQ(scene_choice(defaults, name), spec.options[spec.default_index])
+        << name << ": the default";
     for (const std::string& option : spec.options) {
       const Scene read = parse_scene(scene_with(spec.group, spec.name, option), ".");
       Scene set = defaults;
@@ -87,4 +88,15 @@ TEST(ChoiceTable, SceneDocumentationShowsTheGeneratedTable) {
   text << in.rdbuf();
   EXPECT_NE(text.str().find(choice_table_markdown()), std::string::npos)
       << "scenes/README.md is out of date; paste the output of `progsim params`";
+}
+
+TEST(ChoiceTable, ASceneBuiltInCodeStartsAtTheTablesDefaults) {
+  // Scene{} and ShellMaterial{} are what ps_sim_create and C++ users start from: they must say
+  // what a scene file that names no option says.
+  Scene code;
+  code.bodies.push_back(Body{});
+  for (const ChoiceSpec& spec : choice_table()) {
+    const std::string name = std::string(spec.group) + "." + spec.name;
+    EXPECT_EQ(scene_choice(code, name), spec.options[spec.default_index]) << name;
+  }
 }

@@ -303,8 +303,8 @@ TEST(BendingConvergence, MidedgeCantileverUnderEndShearMatchesSzeBenchmark) {
   // elastica 0.11 %, 0.03 %, 0.01 % at nx = 20, 40, 80; hinge 24-28 % long in −u at P_max/2.
   const double published[2][2] = {{1.604, 4.933}, {3.286, 6.698}};
   const double elastica[2][2] = {{1.6064, 4.9346}, {3.2894, 6.6996}};
-  std::printf("[ sze 3.1  ] %-8s %4s %6s %8s %8s %8s %8s %9s\n", "model", "nx", "P/Pmax", "-u",
-              "w", "-u err", "w err", "elastica");
+  std::printf("[ sze 3.1  ] %-8s %4s %6s %8s %8s %8s %8s %9s\n", "model", "nx", "P/Pmax", "-u", "w",
+              "-u err", "w err", "elastica");
   double previous_error = 1.0;
   for (int nx : {20, 40, 80}) {
     for (BendingModel model : {BendingModel::hinge, BendingModel::midedge}) {
