@@ -192,3 +192,59 @@ def test_named_options_from_keywords_equal_the_scene_file():
                 sim.set_choice("progressive.proxy_hessian", "exact")
             with pytest.raises(progsim.InvalidArgumentError, match="unknown option"):
                 sim.choice("smoothing")
+
+
+def test_wind_strain_limit_friction_and_contact_settings_from_code_equal_json():
+    """The keywords reach every table row a scene's material, contact and wind sections set:
+    a pinned sheet in keyframed gusts, strain-limited, over a frictional ground, built in code,
+    steps bit for bit like its JSON."""
+    effects = EFFECTS + ["strain_limit", "wind"]
+    scene = {
+        "simulation": {"time_step": 0.01},
+        "gravity": [0, 0, -9.81],
+        "effects": effects,
+        "bodies": [
+            {
+                "mesh": {"generator": "grid", "width": 0.4, "height": 0.4, "nx": 4, "ny": 4},
+                "material": {"friction": 0.4, "strain_limit": 1.05},
+            }
+        ],
+        "contact": {"dhat": 2e-3, "stiffness": 50.0, "friction_velocity": 2e-3},
+        "wind": {
+            "keyframes": [
+                {"time": 0, "velocity": [3, 0, 1]},
+                {"time": 0.1, "velocity": [0, 2, 1]},
+            ],
+            "density": 1.1,
+            "drag": 1.5,
+            "lift": 0.3,
+        },
+        "handles": [{"body": 0, "vertices": [0, 4]}],
+        "ground": {"normal": [0, 0, 1], "height": -0.05, "friction": 0.3},
+    }
+    with progsim.Simulation.from_scene(scene) as json_sim:
+        code = progsim.Simulation(
+            json_sim.hierarchy,
+            effects=effects,
+            gravity=(0, 0, -9.81),
+            friction=0.4,
+            strain_limit=1.05,
+            dhat=2e-3,
+            contact_stiffness=50.0,
+            friction_velocity=2e-3,
+            wind_keyframes=[[0, 3, 0, 1], [0.1, 0, 2, 1]],
+            wind_density=1.1,
+            wind_drag=1.5,
+            wind_lift=0.3,
+        )
+        with code:
+            code.add_handle([0, 4])
+            code.set_ground(normal=(0, 0, 1), height=-0.05, friction=0.3)
+            for name in ("material.friction", "material.strain_limit", "contact.dhat",
+                         "contact.stiffness", "contact.friction_velocity"):
+                assert code.get_param(name) == json_sim.get_param(name), name
+            for _ in range(15):
+                json_sim.step_preview(1)
+                code.step_preview(1)
+                assert np.array_equal(code.positions(0), json_sim.positions(0))
+            assert not np.array_equal(code.positions(0), json_sim.hierarchy.rest_positions(0))

@@ -132,7 +132,7 @@ PARAMETERS: Tuple[str, ...] = _parameter_names()
 
 
 def _choice_table() -> Dict[str, Tuple[str, ...]]:
-    """Every named option ps_sim_set_choice accepts with its values, the default first."""
+    """Every named option ps_sim_set_choice accepts with its values."""
     info = ffi.new("ps_choice_info*")
     table = {}
     for index in range(lib.ps_choice_count()):
@@ -143,7 +143,7 @@ def _choice_table() -> Dict[str, Tuple[str, ...]]:
 
 
 #: Named options of :meth:`Simulation.set_choice` (the choice table, scene keys of the same
-#: names) → their values, the default first.
+#: names) → their values.
 CHOICES: Dict[str, Tuple[str, ...]] = _choice_table()
 
 #: Keywords of :class:`Simulation` that set named options.
@@ -437,6 +437,11 @@ class Simulation(NativeObject):
         poisson_ratio: Optional[float] = None,
         thickness: Optional[float] = None,
         density: Optional[float] = None,
+        friction: Optional[float] = None,
+        strain_limit: Optional[float] = None,
+        dhat: Optional[float] = None,
+        contact_stiffness: Optional[float] = None,
+        friction_velocity: Optional[float] = None,
         newton_tolerance: Optional[float] = None,
         max_newton_iterations: Optional[int] = None,
         max_cg_iterations: Optional[int] = None,
@@ -485,6 +490,14 @@ class Simulation(NativeObject):
             poisson_ratio: dimensionless, in (-1, 0.5); default 0.3.
             thickness: m, in (0, 10]; default 1e-3.
             density: kg/m³, in (0, 1e6]; default 200.
+            friction: Coulomb μ of the shell's surface, in [0, 10]; default 0 (a contact pair
+                uses √(μ_a μ_b); needs the ``friction`` effect).
+            strain_limit: largest principal membrane stretch, 0 (none) or in (1, 100];
+                default 0 (needs the ``strain_limit`` effect).
+            dhat: m, the contact activation gap, in (0, 10]; default 1e-3.
+            contact_stiffness: N/m³, the barrier stiffness κ, in [0, 1e30]; default 0
+                (chosen from the loads and grown adaptively).
+            friction_velocity: m/s, friction's smoothing speed ε_v, in (0, 1e3]; default 1e-3.
             newton_tolerance: dimensionless, in (0, 1]; default 1e-5.
             max_newton_iterations: >= 1; default 100.
             max_cg_iterations: >= 0; default 0 (off). CG iterations refining each projected
@@ -516,7 +529,7 @@ class Simulation(NativeObject):
             prediction: how a progressive animation's finer levels predict each step from
                 the coarser frames, a :data:`PREDICTIONS` name; default ``"velocity_only"``.
             effects: names among ``membrane``, ``bending``, ``gravity``, ``pressure``,
-                ``contact``, ``friction``, ``strain_limit``;
+                ``contact``, ``friction``, ``strain_limit``, ``wind``;
                 default ``{"membrane", "bending", "gravity"}``.
             gravity: (gx, gy, gz), m/s²; default (0, -9.81, 0).
             pressure: Pa, applied when the ``pressure`` effect is on; default 0.
@@ -555,6 +568,11 @@ class Simulation(NativeObject):
             "poisson_ratio": poisson_ratio,
             "thickness": thickness,
             "density": density,
+            "friction": friction,
+            "strain_limit": strain_limit,
+            "dhat": dhat,
+            "stiffness": contact_stiffness,
+            "friction_velocity": friction_velocity,
             "newton_tolerance": newton_tolerance,
             "max_newton_iterations": max_newton_iterations,
             "max_cg_iterations": max_cg_iterations,
