@@ -26,7 +26,10 @@ const std::vector<ChoiceAccessor>& accessors() {
       {"simulation.mode", [](const Scene& s) { return static_cast<int>(s.mode); },
        [](Scene& s, int k) { s.mode = static_cast<StepMode>(k); }},
       {"material.bending_model",
-       [](const Scene& s) { return static_cast<int>(s.bodies.front().material.bending_model); },
+       [](const Scene& s) {  // a scene without bodies reads the material default
+         return static_cast<int>(s.bodies.empty() ? ShellMaterial{}.bending_model
+                                                  : s.bodies.front().material.bending_model);
+       },
        [](Scene& s, int k) {
          for (Body& body : s.bodies) body.material.bending_model = static_cast<BendingModel>(k);
        }},

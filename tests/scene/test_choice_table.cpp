@@ -93,10 +93,12 @@ TEST(ChoiceTable, SceneDocumentationShowsTheGeneratedTable) {
 TEST(ChoiceTable, ASceneBuiltInCodeStartsAtTheTablesDefaults) {
   // Scene{} and ShellMaterial{} are what ps_sim_create and C++ users start from: they must say
   // what a scene file that names no option says.
-  Scene code;
-  code.bodies.push_back(Body{});
-  for (const ChoiceSpec& spec : choice_table()) {
-    const std::string name = std::string(spec.group) + "." + spec.name;
-    EXPECT_EQ(scene_choice(code, name), spec.options[spec.default_index]) << name;
+  Scene code;  // without bodies first: material options read ShellMaterial{}
+  for (int bodies : {0, 1}) {
+    if (bodies) code.bodies.push_back(Body{});
+    for (const ChoiceSpec& spec : choice_table()) {
+      const std::string name = std::string(spec.group) + "." + spec.name;
+      EXPECT_EQ(scene_choice(code, name), spec.options[spec.default_index]) << name;
+    }
   }
 }
