@@ -45,7 +45,10 @@ ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, b
   const EffectSet& fx = scene.effects;
   const Positions& rest = model.rest.vertices;
   if (fx.has(Effect::membrane)) out.terms.push_back(membrane_term(model, membrane));
-  if (fx.has(Effect::bending)) out.terms.push_back(bending_term(model));
+  if (fx.has(Effect::bending)) {
+    out.terms.push_back(bending_term(model));
+    out.hinge = dynamic_cast<HingeBending*>(out.terms.back().get());
+  }
   if (with_gravity && fx.has(Effect::gravity)) {
     auto gravity = std::make_unique<Gravity>(model.vertex_masses, scene.gravity);
     out.gravity = gravity.get();
