@@ -18,6 +18,11 @@ inline constexpr int kAccdMaxIterations = 1000000;
 /// can shrink), so a pair sliding along at a gap small against its motion needs about
 /// l_p/gap iterations; at the cap `max_iterations` it returns the t reached, safe but short
 /// (about 0.9 · max_iterations · gap / l_p). A gap at rounding level may end so with a tiny t.
+/// Before such a long advancement, the distance of the point from the triangle's plane (of the
+/// two edges' lines) over the whole motion, a cubic over a quadratic, is bounded from below: a
+/// pair sliding at a small gap that stays at least ξ + s·(d(x) − ξ) away returns t_max at once.
+/// Returns NaN when x or dx has a non-finite entry: no step is known to be safe, and callers
+/// must stop (a NaN would otherwise vanish in std::min).
 /// @param x stencil positions at t = 0 (12)
 /// @param dx displacement (12)
 /// @param thickness ξ ≥ 0, the distance the pair must never get below

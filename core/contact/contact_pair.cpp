@@ -1,6 +1,7 @@
 #include "contact/contact_pair.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "contact/additive_ccd.hpp"
 
@@ -48,6 +49,7 @@ double pair_distance_squared(const ContactPair& pair, const Vec12& xs, const Gro
 
 double pair_safe_step(const ContactPair& pair, const Vec12& xs, const Vec12& dx, double offset,
                       double s, const GroundPlane* ground, int max_iterations) {
+  if (!xs.allFinite() || !dx.allFinite()) return std::numeric_limits<double>::quiet_NaN();
   switch (pair.kind) {
     case ContactPair::Kind::ground: {
       const double approach = -ground->normal.dot(dx.head<3>());

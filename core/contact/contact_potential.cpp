@@ -253,16 +253,19 @@ double ContactPotential::ccd(const Positions& p0, const Positions& p1) {
   const int n = num_items();
   stats_.ccd_calls += n;
   double alpha = 1.0;
-#pragma omp parallel for reduction(min \
-                                   : alpha) schedule(dynamic, 64) if (n >= kMinParallelItems / 16)
+  int non_finite = 0;  // std::min would drop a NaN bound and admit the whole step
+#pragma omp parallel for reduction(min : alpha) reduction(+ : non_finite) schedule(dynamic, 64) \
+    if (n >= kMinParallelItems / 16)
   for (int k = 0; k < n; ++k) {
     const Pair p = pair(k);
     const Vec12 xs = stencil_positions(p.vertices, p0);
     const Vec12 dx = stencil_positions(p.vertices, p1) - xs;
-    alpha = std::min(
-        alpha, pair_safe_step(p, xs, dx, p.offset, kCcdRescaling, ground(), ccd_max_iterations_));
+    const double t =
+        pair_safe_step(p, xs, dx, p.offset, kCcdRescaling, ground(), ccd_max_iterations_);
+    if (std::isnan(t)) ++non_finite;
+    alpha = std::min(alpha, t);
   }
-  return alpha;
+  return non_finite > 0 ? std::numeric_limits<double>::quiet_NaN() : alpha;
 }
 
 void ContactPotential::begin_solve(const Vector& x) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <numeric>
 
 #include "common/error.hpp"
@@ -198,7 +199,11 @@ void Problem::begin_solve(const Vector& x) {
 
 double Problem::max_step(const Vector& x, const Vector& p) {
   double alpha = 1.0;
-  for (StepFilter* f : filters_) alpha = std::min(alpha, f->max_step(x, p));
+  for (StepFilter* f : filters_) {
+    const double bound = f->max_step(x, p);
+    if (std::isnan(bound)) return bound;  // a non-finite motion: no step is known to be safe
+    alpha = std::min(alpha, bound);
+  }
   return alpha;
 }
 

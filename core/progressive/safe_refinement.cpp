@@ -530,6 +530,10 @@ void check_arguments(const MeshHierarchy& h, int level, const Positions& coarse,
              std::to_string(m) + " targets and offsets, got " + std::to_string(coarse.rows()) +
              ", " + std::to_string(target.rows()) + " and " +
              std::to_string(around.vertex_offset.size()));
+  // The CCD bounds below cannot bound a non-finite motion (additive_ccd_point_triangle()).
+  if (!coarse.allFinite() || !target.allFinite() || !around.obstacle_positions.allFinite())
+    fail(Status::numerical_failure,
+         "safe refinement: the coarse state, its targets or the obstacles are not finite");
 }
 
 /// PSQ §4.4 keeps an intersection-free state so: its start must be one. Checked with CGAL's

@@ -77,7 +77,7 @@ bool NewtonSolver::extrapolate(Problem& problem, const Vector& x, double energy,
   bool longer = false;
   for (int k = 0; k < kMaxDoublings; ++k) {
     longer_step_ = (2.0 * alpha) * step_;
-    if (problem.max_step(x, longer_step_) < 1.0) {
+    if (!(problem.max_step(x, longer_step_) >= 1.0)) {  // refused, or NaN
       longer_step_ = alpha * step_;
       problem.max_step(x, longer_step_);  // admitted before: re-establishes the filters' state
       break;
@@ -257,7 +257,12 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
     ScopedTimer timer(time.line_search);
     double alpha = 1.0, new_energy = energy;
     const double slope = gradient_free_.dot(step_free_);
-    if (!line_search(problem, x, energy, slope, settings, alpha, new_energy) &&
+    const bool accepted = line_search(problem, x, energy, slope, settings, alpha, new_energy);
+    if (std::isnan(alpha)) {  // the CCD bound of a non-finite motion (StepFilter::max_step)
+      report.stop = NewtonStop::non_finite;
+      break;
+    }
+    if (!accepted &&
         !capped_line_search(problem, x, energy, settings, length, alpha, new_energy, report)) {
       report.stop = NewtonStop::line_search_failed;
       break;

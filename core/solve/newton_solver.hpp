@@ -67,7 +67,7 @@ enum class NewtonStop {
   converged,             ///< the decrement fell below the tolerance
   max_iterations,        ///< the iteration cap was reached first
   line_search_failed,    ///< no step length decreased the energy
-  non_finite,            ///< the energy or gradient became NaN/Inf
+  non_finite,            ///< the energy, gradient, step or its CCD bound became NaN/Inf
   factorization_failed,  ///< CHOLMOD failed even with a diagonal shift
   interrupted,           ///< the solver's interrupt check asked to stop (set_interrupt)
 };

@@ -16,6 +16,7 @@ class StepFilter {
 
   /// The largest α ∈ [0, 1] for which every point of the segment x + [0, α] p is admissible.
   /// After this call, energies may be evaluated anywhere on that segment (until the next call).
+  /// NaN when x + p is not finite: no step is admissible, and the solve stops as non-finite.
   virtual double max_step(const Vector& x, const Vector& p) = 0;
 
   /// Called after a step was accepted, at the new x. @return true if the objective itself

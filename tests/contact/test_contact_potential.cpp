@@ -4,6 +4,7 @@
 // PSD projection; +∞ inside the offset; and the broad phase against brute force.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "common/error.hpp"
@@ -139,6 +140,12 @@ TEST(ContactPotential, GroundBarrierDerivativesAndCcd) {
   EXPECT_GT(alpha, 0.0);
   EXPECT_LE(alpha, 0.9 * 0.3 * kDhat + 1e-15);
   EXPECT_TRUE(std::isfinite(contact.value(x + alpha * down)));
+  // A non-finite motion has no safe step (issue 33 §7): NaN, never the whole step.
+  down[4] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(contact.max_step(x, down)));
+  down[4] = 0.0;
+  down[2] = std::numeric_limits<double>::infinity();  // an infinite entry too
+  EXPECT_TRUE(std::isnan(contact.max_step(x, down)));
 }
 
 TEST(ContactPotential, InfiniteInsideTheOffsetAndZeroBeyondTheGap) {

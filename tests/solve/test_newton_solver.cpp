@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <limits>
 
 #include "energy/gravity.hpp"
 #include "problem/problem.hpp"
@@ -64,6 +65,15 @@ class BallFilter : public EnergyTerm, public StepFilter {
  private:
   int vertex_;
   double radius_;
+};
+
+/// A step filter that cannot bound any step: what CCD returns for a non-finite motion.
+class NanFilter : public BallFilter {
+ public:
+  NanFilter() : BallFilter(1, 1.0) {}
+  double max_step(const Vector&, const Vector&) override {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 /// Fixes vertex 0 (its three DOFs) and finalizes the problem.
@@ -141,6 +151,21 @@ TEST(NewtonSolver, NeverExtrapolatesPastWhatTheStepFiltersAdmit) {
   EXPECT_GT(report.extrapolated_steps, 0);
   EXPECT_LE(x.segment<3>(3).norm(), 0.5);
   EXPECT_GT(x[3], 0.4);  // it did move out to the ball's edge
+}
+
+TEST(NewtonSolver, StopsAsNonFiniteWhenAStepFilterCannotBoundTheStep) {
+  // Issue 33 §7: std::min(α, NaN) kept α, so a NaN CCD bound admitted the whole step.
+  Problem problem(6);
+  problem.add_term(std::make_unique<SpringTerm>(std::vector<std::array<int, 2>>{{0, 1}}, 2, 1.0));
+  problem.add_term(std::make_unique<SaddleWell>(1, 2, 2.0));
+  problem.add_term(std::make_unique<NanFilter>());
+  fix_vertex_zero_and_finalize(problem);
+  Vector x = just_off_the_origin();
+  const Vector start = x;
+  NewtonSolver solver;
+  const NewtonReport report = solver.minimize(problem, x, saddle_settings(), 1.0, 1.0);
+  EXPECT_EQ(report.stop, NewtonStop::non_finite);
+  EXPECT_EQ(x, start);  // nothing taken
 }
 
 TEST(NewtonSolver, SolvesAQuadraticInOneStepToTheAnalyticEquilibrium) {
