@@ -98,14 +98,17 @@ double plane_distance_bound(const SpanningVectors& v, double t_max) {
 /// Conservative advancement (C-IPC Alg. 1) with centred displacements dx and the bound l_p on
 /// the rate at which the distance can shrink. A motion that would take more than
 /// kCertifiedAdvances steps is first tried against plane_distance_bound().
-double advance(const Vec12& x, const Vec12& dx, double l_p, Classifier classify,
+/// `raw` is dx before centring (plane_distance_bound() takes differences, which need none).
+double advance(const Vec12& x, const Vec12& dx, const Vec12& raw, double l_p, Classifier classify,
                bool point_triangle, double thickness, double s, double t_max, int max_iterations) {
   constexpr double kCertifiedAdvances = 16.0;
   const double g0 = gap(x, classify, thickness);
+  if (!std::isfinite(g0) || !std::isfinite(l_p))  // finite input that overflows
+    return std::numeric_limits<double>::quiet_NaN();
   if (g0 <= 0.0) return 0.0;
   if (l_p == 0.0) return t_max;
   if (l_p * t_max > kCertifiedAdvances * g0 &&
-      plane_distance_bound(spanning_vectors(x, dx, point_triangle), t_max) >= thickness + s * g0)
+      plane_distance_bound(spanning_vectors(x, raw, point_triangle), t_max) >= thickness + s * g0)
     return t_max;                     // the distance stays above ξ + s(d₀ − ξ) throughout
   const double g_min = s * g0;        // stop once the gap drops below s(d₀ − ξ)
   double t_l = (1.0 - s) * g0 / l_p;  // first step keeps a gap ≥ s(d₀ − ξ)
@@ -130,7 +133,7 @@ double additive_ccd_point_triangle(const Vec12& x, const Vec12& dx, double thick
   const Vec12 d = centered(dx);
   // l_p = ‖dp‖ + max_k ‖dt_k‖ bounds how fast the distance can shrink (C-IPC Alg. 1)
   const double l_p = d.segment<3>(0).norm() + max_norm(d, 1, 4);
-  return advance(x, d, l_p, classify_point_triangle, true, thickness, s, t_max, max_iterations);
+  return advance(x, d, dx, l_p, classify_point_triangle, true, thickness, s, t_max, max_iterations);
 }
 
 double additive_ccd_edge_edge(const Vec12& x, const Vec12& dx, double thickness, double s,
@@ -139,7 +142,7 @@ double additive_ccd_edge_edge(const Vec12& x, const Vec12& dx, double thickness,
   const Vec12 d = centered(dx);
   // l_p = max(‖da0‖, ‖da1‖) + max(‖db0‖, ‖db1‖) (C-IPC Alg. 1)
   const double l_p = max_norm(d, 0, 2) + max_norm(d, 2, 4);
-  return advance(x, d, l_p, classify_edge_edge, false, thickness, s, t_max, max_iterations);
+  return advance(x, d, dx, l_p, classify_edge_edge, false, thickness, s, t_max, max_iterations);
 }
 
 }  // namespace progsim

@@ -276,8 +276,9 @@ void ContactPotential::begin_solve(const Vector& x) {
 }
 
 double ContactPotential::max_step(const Vector& x, const Vector& p) {
-  gather_positions(x, positions_);
   moved_ = x + p;
+  if (!moved_.allFinite()) return std::numeric_limits<double>::quiet_NaN();  // before the boxes
+  gather_positions(x, positions_);
   gather_positions(moved_, trial_positions_);
   update_candidates(positions_, trial_positions_);
   return ccd(positions_, trial_positions_);
@@ -285,8 +286,10 @@ double ContactPotential::max_step(const Vector& x, const Vector& p) {
 
 double ContactPotential::max_scripted_step(const Vector& x, const Vector& p,
                                            const Positions& obstacle_target) {
-  gather_positions(x, positions_);
   moved_ = x + p;
+  if (!moved_.allFinite() || !obstacle_target.allFinite())
+    return std::numeric_limits<double>::quiet_NaN();  // before the boxes
+  gather_positions(x, positions_);
   gather_positions(moved_, trial_positions_);
   trial_positions_.bottomRows(mesh_.num_obstacle_vertices) = obstacle_target;
   update_candidates(positions_, trial_positions_);

@@ -16,6 +16,11 @@
 namespace progsim {
 namespace {
 
+/// A pair's CCD bound, 0 (no step) when it is NaN: a non-finite motion (pair_safe_step()).
+double no_step_if_nan(double bound) {
+  return bound >= 0.0 ? bound : 0.0;
+}
+
 /// Directions per stratified round: a Fibonacci lattice covering the sphere evenly.
 constexpr int kDirectionsPerRound = 64;
 /// A perturbed vertex keeps its patch's other primitives at least this fraction of the
@@ -320,9 +325,9 @@ class Expansion {
       if (first >= 0) continue;  // inside one patch (checked below)
       const Vec12 xs = stencil_positions(p.vertices, points_);
       const double d = std::sqrt(pair_distance_squared(p, xs, ground()));
-      const double bound =
+      const double bound = no_step_if_nan(
           pair_safe_step(p, xs, stencil_positions(p.vertices, end) - xs,
-                         d > p.offset ? p.offset : 0.0, settings_.far_ratio, ground());
+                         d > p.offset ? p.offset : 0.0, settings_.far_ratio, ground()));
       for (int v : p.vertices)
         if (v >= 0 && moves[v]) t[owner[v]] = std::min(t[owner[v]], bound);
     }
@@ -331,9 +336,9 @@ class Expansion {
         const ContactPair p = ground_pair(mesh_, moved[b]);
         const Vec12 xs = stencil_positions(p.vertices, points_);
         const double d = pair_distance(p);
-        t[b] = std::min(
-            t[b], pair_safe_step(p, xs, stencil_positions(p.vertices, end) - xs,
-                                 d > p.offset ? p.offset : 0.0, settings_.far_ratio, ground()));
+        t[b] = std::min(t[b], no_step_if_nan(pair_safe_step(
+                                  p, xs, stencil_positions(p.vertices, end) - xs,
+                                  d > p.offset ? p.offset : 0.0, settings_.far_ratio, ground())));
       }
     std::vector<char> done(n, 0);
 #pragma omp parallel for schedule(dynamic, 4)
@@ -488,7 +493,7 @@ class Expansion {
       const double ratio = inside                        ? settings_.inside_ratio
                            : kind[k] == PairClass::close ? settings_.close_ratio
                                                          : settings_.far_ratio;
-      step[k] = pair_safe_step(p, xs, dx, inside ? 0.0 : p.offset, ratio, ground());
+      step[k] = no_step_if_nan(pair_safe_step(p, xs, dx, inside ? 0.0 : p.offset, ratio, ground()));
       alpha = std::min(alpha, step[k]);
     }
     return alpha;

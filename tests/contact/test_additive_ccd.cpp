@@ -225,7 +225,32 @@ TEST(AdditiveCcd, SlidingAtATinyGapCostsNoMoreThanAnOrdinaryQuery) {
   const Vec12 sink = stencil(Vec3(0.01, 0, -2e-6), zero, zero, zero);
   const double t_sink = additive_ccd_point_triangle(pt, sink, 0.0, kS, 1.0);
   EXPECT_LT(t_sink, 0.5);
+  EXPECT_GT(t_sink, 0.4);
   EXPECT_GT(min_distance_until(pt, sink, true, t_sink, 1000), 0.0);
+  // A tumbling triangle passes through the point near t = 0.12, and f = (a × b)·c has the same
+  // sign at t = 0 and 1 (0.02 and 0.055): only its critical points refuse the certificate,
+  // which would otherwise return t = 1 through the impact.
+  const Vec12 tumble_start = stencil(Vec3(0.3, 0.3, 0.02), zero, Vec3(1, 0, 0), Vec3(0, 1, 0));
+  const Vec12 tumble = stencil(Vec3(0, -0.25, -0.06), Vec3(0.3, 0.45, 0.16),
+                               Vec3(-0.41, 0.37, -0.25), Vec3(0.44, -0.54, 0.46));
+  const double t_tumble = additive_ccd_point_triangle(tumble_start, tumble, 0.0, kS, 1.0);
+  EXPECT_LT(t_tumble, 0.15);
+  EXPECT_GT(min_distance_until(tumble_start, tumble, true, t_tumble, 1000), 0.0);
+  // A certified query with t_max ≠ 1 returns that t_max.
+  EXPECT_EQ(additive_ccd_point_triangle(pt, half, 0.0, kS, 0.37, 2), 0.37);
+}
+
+TEST(AdditiveCcd, SlidingParallelEdgesAtATinyGapAreCutShortByTheIterationCap) {
+  // Parallel edges span no plane, so the certificate does not apply: each iteration advances by
+  // at most 0.9 gap / l_p, and a cap of 1000 ends the step at ~900 gaps of motion, still safe.
+  const double gap = 1e-6;
+  const Vec12 x = stencil(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0, gap), Vec3(1.5, 0, gap));
+  const Vec3 zero = Vec3::Zero(), slide(-0.01, 0, 0);
+  const Vec12 dx = stencil(zero, zero, slide, slide);
+  const double t = additive_ccd_edge_edge(x, dx, 0.0, kS, 1.0, 1000);
+  const double l_p = 2.0 * 0.005;  // centred: max ‖da‖ + max ‖db‖
+  EXPECT_NEAR(t, 1000 * 0.9 * gap / l_p, 0.02 * t);
+  EXPECT_GT(min_distance_until(x, dx, false, t, 1000), 0.0);
 }
 
 TEST(AdditiveCcd, ANonFiniteMotionHasNoSafeStep) {
@@ -241,5 +266,6 @@ TEST(AdditiveCcd, ANonFiniteMotionHasNoSafeStep) {
     Vec12 y = x;
     y[0] = bad;
     EXPECT_TRUE(std::isnan(additive_ccd_point_triangle(y, Vec12::Zero(), 0.0, kS, 1.0)));
+    EXPECT_TRUE(std::isnan(additive_ccd_edge_edge(y, Vec12::Zero(), 0.0, kS, 1.0)));
   }
 }
