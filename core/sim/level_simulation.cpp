@@ -52,6 +52,7 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
   sum.cg_iterations += total.cg_iterations;
   sum.extrapolated_steps += total.extrapolated_steps;
   sum.capped_steps += total.capped_steps;
+  sum.symbolic_analyses += total.symbolic_analyses;
   sum.max_shift = std::max(total.max_shift, part.max_shift);
   sum.timings.assembly += total.timings.assembly;
   sum.timings.factorization += total.timings.factorization;
@@ -280,7 +281,7 @@ double LevelSimulation::advance_scripts(double t, double decrement_scale, Newton
       finish_scripts(t, obstacle_target);
       return 1.0;
     }
-    if (alpha < kStalledScriptStep) break;
+    if (!(alpha >= kStalledScriptStep)) break;  // also NaN (a non-finite motion): move nothing
     x_ += alpha * script_step_;
     if (contact_)
       contact_->set_obstacle_positions(obstacles_now + alpha * (obstacle_target - obstacles_now));

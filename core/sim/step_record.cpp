@@ -26,6 +26,7 @@ std::string to_json_line(const StepRecord& r) {
                          {"cg_iterations", n.cg_iterations},
                          {"extrapolated_steps", n.extrapolated_steps},
                          {"capped_steps", n.capped_steps},
+                         {"symbolic_analyses", n.symbolic_analyses},
                          {"phase_seconds",
                           {{"assembly", n.timings.assembly},
                            {"factorization", n.timings.factorization},

@@ -127,9 +127,11 @@ bool NewtonSolver::capped_line_search(Problem& problem, const Vector& x, double 
   return line_search(problem, x, energy, slope, settings, alpha, new_energy);
 }
 
-void NewtonSolver::analyze_if_needed(const Problem& problem, const Problem::SparseMatrix& h) {
+void NewtonSolver::analyze_if_needed(const Problem& problem, const Problem::SparseMatrix& h,
+                                     NewtonReport& report) {
   if (analyzed_for_ == &problem && analyzed_version_ == problem.pattern_version()) return;
   cholesky_.analyze(h);
+  ++report.symbolic_analyses;
   analyzed_for_ = &problem;
   analyzed_version_ = problem.pattern_version();
 }
@@ -146,7 +148,7 @@ bool NewtonSolver::factorize_hessian(Problem& problem, const Vector& x,
     {
       ScopedTimer timer(time.assembly);
       exact = &problem.hessian(x, false);
-      analyze_if_needed(problem, *exact);
+      analyze_if_needed(problem, *exact, report);
     }
     if (try_exact) {
       ScopedTimer timer(time.factorization);
@@ -166,7 +168,7 @@ bool NewtonSolver::factorize_hessian(Problem& problem, const Vector& x,
   {
     ScopedTimer timer(time.assembly);
     projected = &problem.hessian(x, true);
-    analyze_if_needed(problem, *projected);
+    analyze_if_needed(problem, *projected, report);
   }
   ScopedTimer timer(time.factorization);
   if (!cholesky_.factorize(*projected)) return false;

@@ -95,6 +95,9 @@ struct NewtonReport {
   int cg_iterations = 0;       ///< CG iterations refining projected steps (truncated_newton)
   int extrapolated_steps = 0;  ///< whole steps the line search lengthened (extrapolate)
   int capped_steps = 0;        ///< refused steps retried shortened (a mechanism, e.g. a hinge)
+  /// CHOLMOD symbolic analyses (orderings): one per new Hessian pattern, e.g. a contact-set
+  /// change; every other iteration only refactorizes numerically.
+  int symbolic_analyses = 0;
   NewtonTimings timings;
 };
 
@@ -127,7 +130,8 @@ class NewtonSolver {
   long analyzed_version_ = -1;
   int exact_failure_streak_ = 0;  ///< consecutive failed exact attempts, across solves
   long solves_ = 0;
-  void analyze_if_needed(const Problem& problem, const Problem::SparseMatrix& h);
+  void analyze_if_needed(const Problem& problem, const Problem::SparseMatrix& h,
+                         NewtonReport& report);
   bool factorize_hessian(Problem& problem, const Vector& x, HessianProjection projection,
                          bool try_exact, bool keep_exact, NewtonReport& report);
   /// The step of this iteration from the factorized Hessian into step_free_; a projected one
