@@ -95,9 +95,12 @@ extern "C" PS_API void ps_sim_def_init(ps_sim_def* def) {
 #define PROGSIM_PARAMETER(group, name, default_value, ...) def->group##_##name = default_value;
 #include "scene/parameters.def"
 #undef PROGSIM_PARAMETER
-  def->mode = PS_MODE_DYNAMIC;
-  def->prediction = PS_PREDICTION_VELOCITY_ONLY;
+  // The named options and gravity as a scene that does not set them (Scene{}, which the
+  // choice table's test holds to core/scene/choices.def); a cloth's three effects.
+  const progsim::Scene scene;
+  def->mode = scene.mode == progsim::StepMode::dynamic ? PS_MODE_DYNAMIC : PS_MODE_QUASISTATIC;
+  def->prediction = progsim::capi::prediction_enum(scene.progressive.prediction);
   def->effects = PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_GRAVITY;
-  def->gravity[1] = -9.81;
+  for (int k = 0; k < 3; ++k) def->gravity[k] = scene.gravity[k];
   def->internal_cookie = progsim::capi::kSimCookie;
 }
