@@ -13,6 +13,7 @@
 #include "common/error.hpp"
 #include "energy/positive_volume_step.hpp"
 #include "energy/tet_elastics.hpp"
+#include "energy/tet_lumped_mass.hpp"
 #include "problem/problem.hpp"
 #include "solve/newton_solver.hpp"
 #include "support/energy_checks.hpp"
@@ -313,4 +314,16 @@ TEST(TetElastics, RejectsBadInputNamingTheProblem) {
     EXPECT_EQ(e.status(), Status::invalid_argument);
     EXPECT_NE(std::string(e.what()).find("nu"), std::string::npos) << e.what();
   }
+}
+
+TEST(TetLumpedMass, QuartersEachTetsMassAmongItsCorners) {
+  Cube c = unit_cube();
+  c.vertices *= 2.0;  // an 8 m³ cube
+  std::vector<SolidMaterial> m = materials(SolidModel::stvk, 6);
+  for (int t = 0; t < 6; ++t) m[t].density = 100.0 * (t + 1);  // 1/6 of the volume each
+  const Eigen::VectorXd masses = lumped_tet_masses(c.vertices, c.tets, m);
+  EXPECT_NEAR(masses.sum(), 8.0 / 6.0 * 100.0 * 21.0, 1e-9);
+  // Corners 0 and 7 are in all six tets: a quarter of every tet's mass.
+  EXPECT_NEAR(masses[0], 8.0 / 6.0 * 100.0 * 21.0 / 4.0, 1e-9);
+  EXPECT_NEAR(masses[7], masses[0], 1e-9);
 }
