@@ -8,6 +8,8 @@ namespace progsim {
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 /// Triangle vertex indices, one row per face: (|F| × 3), row-major.
 using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+/// Tetrahedron vertex indices, one row per tet: (|T| × 4), row-major.
+using Tets = Eigen::Matrix<int, Eigen::Dynamic, 4, Eigen::RowMajor>;
 /// Stacked degrees of freedom (x0 y0 z0 x1 ...): (3|V|).
 using Vector = Eigen::VectorXd;
 using Vec2 = Eigen::Vector2d;
