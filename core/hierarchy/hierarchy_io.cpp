@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "common/file_output.hpp"
 
 namespace progsim {
 namespace {
@@ -285,18 +286,7 @@ MeshHierarchy read_hierarchy(Reader& in) {
 }  // namespace
 
 void save_hierarchy(const MeshHierarchy& hierarchy, const std::string& path) {
-  // Written beside the target and renamed over it: a failed save leaves the old file intact.
-  const std::string partial = path + ".partial";
-  std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-  if (!out) fail(Status::io_error, path + ": cannot open the file for writing");
-  put_hierarchy(out, hierarchy);
-  out.close();
-  std::error_code error;
-  if (out) std::filesystem::rename(partial, path, error);
-  if (!out || error) {
-    std::filesystem::remove(partial, error);
-    fail(Status::io_error, path + ": cannot write the file");
-  }
+  write_file_atomically(path, [&](std::ostream& out) { put_hierarchy(out, hierarchy); });
 }
 
 MeshHierarchy load_hierarchy(const std::string& path) {

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <vector>
 
-#include "common/error.hpp"
+#include "mesh/element_checks.hpp"
 #include "mesh/half_edges.hpp"
 
 namespace progsim {
@@ -14,11 +14,6 @@ namespace {
 /// Faces whose area is at most this fraction of the squared bounding-box diagonal count as
 /// degenerate. Relative, so that slivers with tiny angles but a real area pass.
 constexpr double kDegenerateAreaFraction = 1e-14;
-
-/// Throws invalid_mesh with "<label>: <what>".
-[[noreturn]] void reject(const std::string& label, const std::string& what) {
-  fail(Status::invalid_mesh, label + ": " + what);
-}
 
 /// "(a, b, c)" for face f.
 std::string face_string(const Faces& faces, int f) {
@@ -29,37 +24,15 @@ std::string face_string(const Faces& faces, int f) {
 
 void check_not_empty(const TriangleMesh& mesh, const std::string& label) {
   if (mesh.num_faces() == 0)
-    reject(label, "the mesh has no faces (" + std::to_string(mesh.num_vertices()) + " vertices)");
-}
-
-void check_finite(const TriangleMesh& mesh, const std::string& label) {
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    for (int k = 0; k < 3; ++k) {
-      const double x = mesh.vertices(v, k);
-      if (std::isfinite(x)) continue;
-      std::ostringstream s;
-      s << "vertex " << v << " has a non-finite coordinate (" << x << ')';
-      reject(label, s.str());
-    }
-  }
-}
-
-void check_indices(const TriangleMesh& mesh, const std::string& label) {
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int v = mesh.faces(f, k);
-      if (v >= 0 && v < mesh.num_vertices()) continue;
-      reject(label, "face " + std::to_string(f) + " references vertex " + std::to_string(v) +
-                        ", but the mesh has " + std::to_string(mesh.num_vertices()) + " vertices");
-    }
-  }
+    reject_mesh(label,
+                "the mesh has no faces (" + std::to_string(mesh.num_vertices()) + " vertices)");
 }
 
 void check_distinct_corners(const TriangleMesh& mesh, const std::string& label) {
   const Faces& F = mesh.faces;
   for (int f = 0; f < mesh.num_faces(); ++f) {
     if (F(f, 0) != F(f, 1) && F(f, 1) != F(f, 2) && F(f, 2) != F(f, 0)) continue;
-    reject(label, "face " + std::to_string(f) + " repeats a vertex: " + face_string(F, f));
+    reject_mesh(label, "face " + std::to_string(f) + " repeats a vertex: " + face_string(F, f));
   }
 }
 
@@ -71,7 +44,7 @@ void check_areas(const TriangleMesh& mesh, const std::string& label) {
     if (areas[f] > threshold) continue;
     std::ostringstream s;
     s << "face " << f << " is degenerate (area " << areas[f] << " m²)";
-    reject(label, s.str());
+    reject_mesh(label, s.str());
   }
 }
 
@@ -84,17 +57,17 @@ void check_edges(const TriangleMesh& mesh, const std::vector<HalfEdge>& half_edg
                  const std::string& label) {
   for_each_edge(half_edges, [&](std::size_t first, std::size_t count) {
     if (count <= 2) return;
-    reject(label, edge_string(half_edges[first]) + " is shared by " + std::to_string(count) +
-                      " faces (non-manifold)");
+    reject_mesh(label, edge_string(half_edges[first]) + " is shared by " + std::to_string(count) +
+                           " faces (non-manifold)");
   });
   for_each_edge(half_edges, [&](std::size_t first, std::size_t count) {
     const HalfEdge& a = half_edges[first];
     if (count < 2) return;
     const HalfEdge& b = half_edges[first + 1];
     if (runs_forward(a, mesh.faces) != runs_forward(b, mesh.faces)) return;
-    reject(label, edge_string(a) + " is traversed in the same direction by faces " +
-                      std::to_string(a.face) + " and " + std::to_string(b.face) +
-                      " (inconsistent orientation)");
+    reject_mesh(label, edge_string(a) + " is traversed in the same direction by faces " +
+                           std::to_string(a.face) + " and " + std::to_string(b.face) +
+                           " (inconsistent orientation)");
   });
 }
 
@@ -138,32 +111,24 @@ void check_vertex_fans(const TriangleMesh& mesh, const std::vector<HalfEdge>& ha
     }
   }
   if (bow_tie < 0) return;
-  reject(label, "vertex " + std::to_string(bow_tie) +
-                    " is a non-manifold (bow-tie) vertex: faces " + std::to_string(face_a) +
-                    " and " + std::to_string(face_b) +
-                    " touch there but are not connected through the edges around it");
-}
-
-void check_referenced(const TriangleMesh& mesh, const std::string& label) {
-  std::vector<bool> used(mesh.num_vertices(), false);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) used[mesh.faces(f, k)] = true;
-  for (int v = 0; v < mesh.num_vertices(); ++v)
-    if (!used[v]) reject(label, "vertex " + std::to_string(v) + " is not referenced by any face");
+  reject_mesh(label, "vertex " + std::to_string(bow_tie) +
+                         " is a non-manifold (bow-tie) vertex: faces " + std::to_string(face_a) +
+                         " and " + std::to_string(face_b) +
+                         " touch there but are not connected through the edges around it");
 }
 
 }  // namespace
 
 void validate_mesh(const TriangleMesh& mesh, const std::string& label) {
   check_not_empty(mesh, label);
-  check_finite(mesh, label);
-  check_indices(mesh, label);
+  check_finite_vertices(mesh.vertices, label);
+  check_element_indices(mesh.faces, mesh.num_vertices(), "face", label);
   check_distinct_corners(mesh, label);
   check_areas(mesh, label);
   const std::vector<HalfEdge> half_edges = sorted_half_edges(mesh.faces, mesh.num_vertices());
   check_edges(mesh, half_edges, label);
   check_vertex_fans(mesh, half_edges, label);
-  check_referenced(mesh, label);
+  check_referenced_vertices(mesh.faces, mesh.num_vertices(), "face", label);
 }
 
 }  // namespace progsim

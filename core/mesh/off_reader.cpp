@@ -1,88 +1,14 @@
 #include "mesh/off_reader.hpp"
 
-#include <cctype>
-#include <charconv>
-#include <filesystem>
-#include <fstream>
 #include <string_view>
 
-#include "common/error.hpp"
+#include "mesh/text_lines.hpp"
 
 namespace progsim {
 namespace {
 
-/// A non-blank line of an OFF file with its "#" comment removed, split at white space.
-struct OffLine {
-  std::size_t number = 0;  ///< counting from 1
-  std::vector<std::string> tokens;
-};
-
-/// Hands out the non-blank lines of an OFF file one by one, and words its parse errors.
-class OffLines {
- public:
-  explicit OffLines(const std::string& path) : path_(path), in_(path, std::ios::binary) {}
-
-  /// The next non-blank line; false at the end of the file.
-  bool next(OffLine& line) {
-    for (std::string text; std::getline(in_, text);) {
-      ++number_;
-      line = OffLine{number_, split(text.substr(0, text.find('#')))};
-      if (!line.tokens.empty()) return true;
-    }
-    return false;
-  }
-
-  /// Like next(), but a missing line is a truncated file; `expected` names what was due.
-  OffLine require(const std::string& expected) {
-    OffLine line;
-    if (!next(line)) fail_parse(number_, "the file ends before " + expected + " (truncated)");
-    return line;
-  }
-
-  [[noreturn]] void fail_parse(std::size_t line, const std::string& what) const {
-    fail(Status::io_error, path_ + ": cannot parse the file as OFF (line " + std::to_string(line) +
-                               ": " + what + ")");
-  }
-
-  [[noreturn]] void fail_mesh(const std::string& what) const {
-    fail(Status::invalid_mesh, path_ + ": " + what);
-  }
-
-  [[noreturn]] void fail_io(const std::string& what) const {
-    fail(Status::io_error, path_ + ": " + what);
-  }
-
- private:
-  static std::vector<std::string> split(const std::string& text) {
-    std::vector<std::string> tokens;
-    std::size_t i = 0;
-    const auto space = [&](std::size_t k) {
-      return std::isspace(static_cast<unsigned char>(text[k])) != 0;
-    };
-    while (i < text.size()) {
-      while (i < text.size() && space(i)) ++i;
-      const std::size_t start = i;
-      while (i < text.size() && !space(i)) ++i;
-      if (i > start) tokens.push_back(text.substr(start, i - start));
-    }
-    return tokens;
-  }
-
-  std::string path_;
-  std::ifstream in_;
-  std::size_t number_ = 0;
-};
-
-/// Parses all of `token` as a number of type T; false if anything is left over or wrong.
-template <class T>
-bool parse_whole(std::string_view token, T& value) {
-  if (!token.empty() && token[0] == '+') token.remove_prefix(1);  // from_chars rejects '+'
-  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return !token.empty() && error == std::errc() && end == token.data() + token.size();
-}
-
 /// Checks the keyword `[ST][C][N]OFF` that opens the file. Binary, 4D and nD OFF are refused.
-void check_keyword(const OffLines& lines, const OffLine& first) {
+void check_keyword(const TextLines& lines, const TextLine& first) {
   std::string_view keyword = first.tokens[0];
   for (const std::string_view prefix : {"ST", "C", "N"})
     if (keyword.substr(0, prefix.size()) == prefix) keyword.remove_prefix(prefix.size());
@@ -104,8 +30,9 @@ struct OffCounts {
 /// Reads "|V| |F| [|E|]" from the keyword line's remaining words or else the next line, and
 /// rejects counts the file is too short to hold before anything is allocated: a vertex line
 /// takes at least 6 bytes ("0 0 0\n") and a face line at least 2 ("0\n").
-OffCounts read_counts(OffLines& lines, const OffLine& first, std::uintmax_t file_size) {
-  OffLine line{first.number, {first.tokens.begin() + 1, first.tokens.end()}};
+OffCounts read_counts(TextLines& lines, const TextLine& first) {
+  const std::uintmax_t file_size = lines.file_size();
+  TextLine line{first.number, {first.tokens.begin() + 1, first.tokens.end()}};
   if (line.tokens.empty()) line = lines.require("the vertex and face counts");
   OffCounts counts;
   if (line.tokens.size() < 2 || line.tokens.size() > 3 ||
@@ -120,10 +47,10 @@ OffCounts read_counts(OffLines& lines, const OffLine& first, std::uintmax_t file
 }
 
 /// Reads the first three numbers of each of `count` vertex lines.
-Positions read_vertices(OffLines& lines, std::size_t count) {
+Positions read_vertices(TextLines& lines, std::size_t count) {
   Positions vertices(static_cast<Eigen::Index>(count), 3);
   for (std::size_t v = 0; v < count; ++v) {
-    const OffLine line = lines.require("vertex " + std::to_string(v));
+    const TextLine line = lines.require("vertex " + std::to_string(v));
     if (line.tokens.size() < 3)
       lines.fail_parse(line.number,
                        "vertex " + std::to_string(v) + " has fewer than 3 coordinates");
@@ -138,7 +65,7 @@ Positions read_vertices(OffLines& lines, std::size_t count) {
 }
 
 /// Reads face `f` from `line`: its size k, then k vertex indices in [0, num_vertices).
-std::vector<std::size_t> read_face(const OffLines& lines, const OffLine& line, std::size_t f,
+std::vector<std::size_t> read_face(const TextLines& lines, const TextLine& line, std::size_t f,
                                    std::size_t num_vertices) {
   const std::string name = "face " + std::to_string(f);
   std::size_t k = 0;
@@ -160,13 +87,10 @@ std::vector<std::size_t> read_face(const OffLines& lines, const OffLine& line, s
 }  // namespace
 
 PolygonSoup read_off(const std::string& path) {
-  std::error_code error;
-  const std::uintmax_t file_size = std::filesystem::file_size(path, error);
-  OffLines lines(path);
-  if (error) lines.fail_io("cannot read the file's size (" + error.message() + ")");
-  const OffLine first = lines.require("the keyword OFF");
+  TextLines lines(path, "OFF");
+  const TextLine first = lines.require("the keyword OFF");
   check_keyword(lines, first);
-  const OffCounts counts = read_counts(lines, first, file_size);
+  const OffCounts counts = read_counts(lines, first);
   PolygonSoup soup{read_vertices(lines, counts.vertices), {}};
   soup.polygons.reserve(counts.faces);
   for (std::size_t f = 0; f < counts.faces; ++f)
