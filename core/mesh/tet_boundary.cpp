@@ -5,10 +5,10 @@
 namespace progsim {
 
 TetBoundary extract_tet_boundary(const TetMesh& mesh) {
-  const Faces faces = boundary_faces(sorted_tet_faces(mesh.tets), mesh.tets);
+  TetBoundary boundary;
+  const Faces faces = boundary_faces(sorted_tet_faces(mesh.tets), mesh.tets, &boundary.face_tet);
   std::vector<int> surface_vertex(mesh.num_vertices(), -1);
   for (Eigen::Index i = 0; i < faces.size(); ++i) surface_vertex[faces.data()[i]] = 0;
-  TetBoundary boundary;
   for (int v = 0; v < mesh.num_vertices(); ++v) {
     if (surface_vertex[v] < 0) continue;
     surface_vertex[v] = static_cast<int>(boundary.volume_vertex.size());

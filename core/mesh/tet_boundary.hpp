@@ -11,6 +11,7 @@ namespace progsim {
 struct TetBoundary {
   TriangleMesh surface;            ///< the boundary vertices and faces, normals outward
   std::vector<int> volume_vertex;  ///< surface vertex i is tet mesh vertex volume_vertex[i]
+  std::vector<int> face_tet;       ///< surface face f belongs to tet face_tet[f]
 };
 
 /// Extracts the faces used by exactly one tet, each ordered so that its right-hand normal points

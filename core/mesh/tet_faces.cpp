@@ -32,10 +32,13 @@ std::vector<TetFace> sorted_tet_faces(const Tets& tets) {
   return faces;
 }
 
-Faces boundary_faces(const std::vector<TetFace>& faces, const Tets& tets) {
+Faces boundary_faces(const std::vector<TetFace>& faces, const Tets& tets,
+                     std::vector<int>* face_tet) {
   std::vector<std::array<int, 3>> once;
   for_each_face(faces, [&](std::size_t first, std::size_t count) {
-    if (count == 1) once.push_back(oriented_face(tets, faces[first].tet, faces[first].local));
+    if (count != 1) return;
+    once.push_back(oriented_face(tets, faces[first].tet, faces[first].local));
+    if (face_tet) face_tet->push_back(faces[first].tet);
   });
   Faces result(static_cast<Eigen::Index>(once.size()), 3);
   for (std::size_t f = 0; f < once.size(); ++f)

@@ -29,8 +29,10 @@ bool same_orientation(const std::array<int, 3>& a, const std::array<int, 3>& b);
 std::vector<TetFace> sorted_tet_faces(const Tets& tets);
 
 /// The faces that occur once in `faces` (sorted_tet_faces of `tets`), each in its tet's outward
-/// order, in sorted key order: the boundary surface of a valid tet mesh.
-Faces boundary_faces(const std::vector<TetFace>& faces, const Tets& tets);
+/// order, in sorted key order: the boundary surface of a valid tet mesh. Nullable `face_tet`
+/// receives the tet each boundary face belongs to.
+Faces boundary_faces(const std::vector<TetFace>& faces, const Tets& tets,
+                     std::vector<int>* face_tet = nullptr);
 
 /// Calls fn(first, count) for each run of `count` faces with one vertex set, in sorted order;
 /// `first` indexes `faces`.
