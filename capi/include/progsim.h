@@ -278,6 +278,7 @@ typedef enum ps_effect {
   PS_EFFECT_FRICTION = 1 << 5,     /**< Coulomb friction on contacts (with material_friction > 0) */
   PS_EFFECT_STRAIN_LIMIT = 1 << 6, /**< barrier keeping stretches below material_strain_limit */
   PS_EFFECT_WIND = 1 << 7,         /**< aerodynamic drag and lift of ps_sim_def's wind (dynamic) */
+  PS_EFFECT_ELASTICITY = 1 << 8,   /**< hyperelastic energy of volumetric (tetrahedral) bodies */
   PS_EFFECT_FORCE32 = 0x7fffffff
 } ps_effect;
 

@@ -8,7 +8,8 @@ namespace {
 constexpr int32_t kSimCookie = 0x50535344;  // "PSSD"
 constexpr uint32_t kAllEffects = PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_GRAVITY |
                                  PS_EFFECT_PRESSURE | PS_EFFECT_CONTACT | PS_EFFECT_FRICTION |
-                                 PS_EFFECT_STRAIN_LIMIT | PS_EFFECT_WIND;
+                                 PS_EFFECT_STRAIN_LIMIT | PS_EFFECT_WIND |
+                                 PS_EFFECT_ELASTICITY;
 }  // namespace
 
 uint32_t effect_bits(const EffectSet& effects) {

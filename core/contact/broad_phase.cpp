@@ -281,6 +281,15 @@ std::vector<char> primitives_moving(int count, IndexOf index_of, const std::vect
   return out;
 }
 
+/// The contact points (CollisionMesh::points) whose flag is `value`.
+std::vector<int> points_where(const CollisionMesh& mesh, const std::vector<char>& flags,
+                              bool value) {
+  std::vector<int> out;
+  for (int v : mesh.points)
+    if (static_cast<bool>(flags[v]) == value) out.push_back(v);
+  return out;
+}
+
 /// Grid cell size: the mean largest extent of the boxes (at least the inflation).
 double cell_size(const std::vector<Box>& boxes, double inflation) {
   double sum = 0.0;
@@ -320,8 +329,8 @@ void find_candidates(const CollisionMesh& mesh, const Positions& p0, const Posit
   };
   if (!moving) {
     const std::vector<int> edges = all_indices(ne);
-    out.vertex_face =
-        overlapping_pairs(vertex_boxes, vertex_ids, face_boxes, all_indices(nf), cell, vertex_face);
+    out.vertex_face = overlapping_pairs(vertex_boxes, mesh.points, face_boxes, all_indices(nf),
+                                        cell, vertex_face);
     out.edge_edge = overlapping_pairs(edge_boxes, edges, edge_boxes, edges, cell,
                                       [&](int a, int b) { return a < b && edge_edge(a, b); });
   } else {
@@ -329,10 +338,10 @@ void find_candidates(const CollisionMesh& mesh, const Positions& p0, const Posit
     // the moving faces; moving edges against every edge, a pair of two moving edges once.
     const std::vector<char> face_moves = primitives_moving<3>(nf, face_of, *moving);
     const std::vector<char> edge_moves = primitives_moving<2>(ne, edge_of, *moving);
-    out.vertex_face = overlapping_pairs(vertex_boxes, indices_where(*moving, true), face_boxes,
+    out.vertex_face = overlapping_pairs(vertex_boxes, points_where(mesh, *moving, true), face_boxes,
                                         all_indices(nf), cell, vertex_face);
     const auto still_vertex_moving_face =
-        overlapping_pairs(vertex_boxes, indices_where(*moving, false), face_boxes,
+        overlapping_pairs(vertex_boxes, points_where(mesh, *moving, false), face_boxes,
                           indices_where(face_moves, true), cell, vertex_face);
     out.vertex_face.insert(out.vertex_face.end(), still_vertex_moving_face.begin(),
                            still_vertex_moving_face.end());

@@ -50,6 +50,13 @@ CollisionMesh build_collision_mesh(const Positions& shell_rest, const Faces& she
     face += o.faces->rows();
   }
   mesh.edges = build_topology(mesh.faces, mesh.num_vertices()).edges;
+  std::vector<char> used(mesh.num_vertices(), 0);
+  for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) used[mesh.faces.data()[i]] = 1;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (used[v]) mesh.points.push_back(v);
+  mesh.num_shell_points = static_cast<int>(
+      std::lower_bound(mesh.points.begin(), mesh.points.end(), mesh.num_shell_vertices) -
+      mesh.points.begin());
   return mesh;
 }
 

@@ -20,6 +20,10 @@ struct CollisionMesh {
   std::vector<double> vertex_offset;      ///< ξ_v: half the shell thickness, 0 on obstacles (m)
   std::vector<double> vertex_friction;    ///< μ_v of the surface the vertex belongs to
   Positions rest;                         ///< (|V| × 3) rest positions (edge–edge mollifier)
+  /// The vertices that meet faces and the ground as points, ascending: those a face uses. A
+  /// shell vertex no face uses (inside a tetrahedral solid) never collides.
+  std::vector<int> points;
+  int num_shell_points = 0;  ///< the first num_shell_points entries of points are shell vertices
 
   int num_vertices() const { return num_shell_vertices + num_obstacle_vertices; }
   bool is_obstacle(int v) const { return v >= num_shell_vertices; }
@@ -39,7 +43,8 @@ struct ObstacleSurface {
   double friction;             ///< μ of its surface
 };
 
-/// Merges the shell (its vertices, in order, are the DOFs) and the obstacles.
+/// Merges the shell (its vertices, in order, are the DOFs; vertices none of its faces use, such as
+/// a solid's interior, are DOFs without contact) and the obstacles.
 /// @param shell_offset per shell vertex ξ (m), e.g. half the thickness of its body
 /// @param shell_friction per shell vertex μ
 CollisionMesh build_collision_mesh(const Positions& shell_rest, const Faces& shell_faces,

@@ -54,13 +54,13 @@ void ContactPotential::set_obstacle_positions(const Positions& positions) {
 }
 
 int ContactPotential::num_items() const {
-  return static_cast<int>(candidates_.size()) + (ground_ ? mesh_.num_shell_vertices : 0);
+  return static_cast<int>(candidates_.size()) + (ground_ ? mesh_.num_shell_points : 0);
 }
 
 ContactPotential::Pair ContactPotential::pair(int k) const {
   const int num_candidates = static_cast<int>(candidates_.size());
   Pair p = k < num_candidates ? candidate_pair(mesh_, candidates_, k)
-                              : ground_pair(mesh_, k - num_candidates);
+                              : ground_pair(mesh_, mesh_.points[k - num_candidates]);
   if (!lowered_.empty())
     if (const auto it = lowered_.find(key_of(p)); it != lowered_.end()) p.offset = it->second;
   return p;

@@ -22,4 +22,8 @@ TetBoundary extract_tet_boundary(const TetMesh& mesh) {
   return boundary;
 }
 
+Faces tet_boundary_faces(const TetMesh& mesh) {
+  return boundary_faces(sorted_tet_faces(mesh.tets), mesh.tets);
+}
+
 }  // namespace progsim

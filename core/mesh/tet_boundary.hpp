@@ -22,4 +22,8 @@ struct TetBoundary {
 /// no tet repeats a vertex (the mesh need not be otherwise valid).
 TetBoundary extract_tet_boundary(const TetMesh& mesh);
 
+/// The boundary faces of extract_tet_boundary() indexing the tet mesh's own vertices (|F| × 3),
+/// the faces of a solid body (scene.hpp). Same precondition.
+Faces tet_boundary_faces(const TetMesh& mesh);
+
 }  // namespace progsim

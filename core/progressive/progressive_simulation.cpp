@@ -39,6 +39,12 @@ std::vector<int> coarse_counts(const ProgressiveSettings& p, int finest_vertices
 
 /// build_scene_hierarchy() of a scene that passed check_progressive_scene().
 MeshHierarchy checked_scene_hierarchy(const Scene& scene, HierarchyProgress progress, void* user) {
+  if (std::any_of(scene.bodies.begin(), scene.bodies.end(), is_solid))
+    fail(Status::unsupported,
+         scene.name +
+             ": volumetric (tet) bodies are simulated directly only so far (LevelSimulation, "
+             "`progsim run --direct`); their hierarchies and progressive animation (VPD) are not "
+             "built yet");
   const ShellModel model = build_shell_model(scene);
   HierarchyOptions options;
   options.coarse_vertex_counts = coarse_counts(scene.progressive, model.rest.num_vertices());

@@ -22,6 +22,8 @@ const char* effect_name(Effect e) {
       return "strain_limit";
     case Effect::wind:
       return "wind";
+    case Effect::elasticity:
+      return "elasticity";
     case Effect::count_:
       break;
   }

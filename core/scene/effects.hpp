@@ -15,6 +15,7 @@ enum class Effect : unsigned {
   friction,      ///< lagged smoothed Coulomb friction on contacts (needs contact; μ > 0)
   strain_limit,  ///< barrier on membrane stretches above material.strain_limit
   wind,          ///< aerodynamic drag and lift of a wind on every face (dynamic scenes)
+  elasticity,    ///< hyperelastic energy of the tets of volumetric bodies (VPD §3.1.3)
   count_,
 };
 

@@ -1,12 +1,15 @@
 #include "scene/scene.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.hpp"
 #include "energy/force_couple.hpp"
 #include "mesh/mesh_topology.hpp"
 #include "mesh/mesh_validation.hpp"
+#include "mesh/tet_boundary.hpp"
+#include "mesh/tet_mesh_validation.hpp"
 #include "scene/parameter_table.hpp"
 
 namespace progsim {
@@ -56,6 +59,37 @@ void validate_material(const ShellMaterial& m) {
   if (m.strain_limit != 0.0 && !(m.strain_limit > 1.0))
     fail(Status::invalid_scene, "material.strain_limit = " + std::to_string(m.strain_limit) +
                                     " must be 0 (no limit) or greater than 1");
+}
+
+/// A shell's mesh is a valid surface; a solid's tets are a valid tet mesh and its faces their
+/// boundary.
+void validate_body_geometry(const Body& body) {
+  if (!is_solid(body)) return validate_mesh(body.mesh, body.name);
+  const TetMesh volume{body.mesh.vertices, body.tets};
+  validate_tet_mesh(volume, body.name);
+  if (body.mesh.faces != tet_boundary_faces(volume))
+    fail(Status::invalid_mesh, body.name +
+                                   ": the faces of a solid body must be its tets' "
+                                   "boundary (tet_boundary_faces)");
+}
+
+/// Volumetric bodies: not mixed with shells yet, and the effects that act on them.
+void validate_solids(const Scene& scene) {
+  const auto solids = std::count_if(scene.bodies.begin(), scene.bodies.end(), is_solid);
+  const auto count = static_cast<long>(scene.bodies.size());
+  if (solids > 0 && solids < count)
+    fail(Status::unsupported,
+         "the scene mixes shell and volumetric (tet) bodies, which this version cannot simulate "
+         "together yet");
+  for (Effect e : {Effect::membrane, Effect::bending, Effect::strain_limit})
+    if (solids > 0 && scene.effects.has(e))
+      fail(Status::invalid_scene, std::string("the '") + effect_name(e) +
+                                      "' effect acts on shells, and the scene's bodies are "
+                                      "volumetric: use 'elasticity'");
+  if (solids == 0 && scene.effects.has(Effect::elasticity))
+    fail(Status::invalid_scene,
+         "the 'elasticity' effect acts on volumetric (tet) bodies, and the scene has none: use "
+         "'membrane' and 'bending' for shells");
 }
 
 /// Obstacles, ground and contact settings; collision objects need the contact effect.
@@ -247,7 +281,7 @@ void validate_scene(const Scene& scene) {
       fail(Status::invalid_scene, body.name + ": material.bending_model differs from " +
                                       scene.bodies.front().name +
                                       "'s (one bending model per scene)");
-    validate_mesh(body.mesh, body.name);
+    validate_body_geometry(body);
     if (!std::isfinite(body.pressure) || !(body.pressure_ramp >= 0.0) ||
         !std::isfinite(body.pressure_ramp))
       fail(Status::invalid_scene,
@@ -257,6 +291,7 @@ void validate_scene(const Scene& scene) {
   }
   for (std::size_t h = 0; h < scene.handles.size(); ++h) validate_handle(scene, h);
   for (std::size_t k = 0; k < scene.loads.size(); ++k) validate_load(scene, k);
+  validate_solids(scene);
   validate_contact(scene);
   validate_progressive(scene.progressive);
   validate_wind(scene);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "energy/shell_material.hpp"
+#include "energy/solid_material.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "scene/effects.hpp"
 #include "scene/keyframes.hpp"
@@ -18,14 +19,23 @@ enum class StepMode {
   quasistatic,  ///< each step minimises the potential energy (no inertia) at that step's loads
 };
 
-/// A shell body: its mesh (already transformed to world space), material and pressure.
+/// A body: a shell (a triangle mesh) or a volumetric solid (tets), already transformed to world
+/// space, with its material and pressure.
 struct Body {
   std::string name;
+  /// A shell's mesh; for a solid, all its vertices (interior ones too) with its boundary faces
+  /// (tet_boundary_faces(), so interior vertices belong to no face).
   TriangleMesh mesh;
+  /// Shells: all of it; solids: E, ν, ρ and friction (thickness, bending and strain limit do not
+  /// apply).
   ShellMaterial material;
   double pressure = 0.0;         ///< Pa, applied if the pressure effect is enabled
   double pressure_ramp = 0.0;    ///< s; pressure grows linearly from 0 over this time (0: at once)
   Vec3 velocity = Vec3::Zero();  ///< m/s, initial velocity of every vertex (dynamic scenes)
+  /// Non-empty: the body is a volumetric solid (VPD §3.1) whose tets index mesh.vertices,
+  /// positively oriented (tet_mesh.hpp).
+  Tets tets;
+  SolidModel solid_model = SolidModel::neo_hookean;  ///< the solid's energy density (solids only)
 };
 
 /// Rigid motion of a handle or an obstacle: x(t) = c + R(ω t)(x₀ − c) + v t + offset, with R a
@@ -252,6 +262,17 @@ double ramp_factor(double t, double ramp);
 /// Error(status) naming `where` (the motion's path, e.g. "handles[0].motion").
 void validate_motion(const HandleMotion& motion, const std::string& where,
                      Status status = Status::invalid_scene);
+
+/// Whether the body is a volumetric solid (it has tets).
+inline bool is_solid(const Body& body) {
+  return body.tets.rows() > 0;
+}
+
+/// The material of a solid body's tets: its material's E, ν and ρ with its solid_model.
+inline SolidMaterial solid_material(const Body& body) {
+  return {body.material.youngs_modulus, body.material.poisson_ratio, body.material.density,
+          body.solid_model};
+}
 
 /// Checks a scene built in code (the JSON parser calls it too): ranges of every parameter,
 /// valid meshes, handle indices in range. Throws Error(invalid_scene / invalid_mesh).

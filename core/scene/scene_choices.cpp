@@ -33,6 +33,14 @@ const std::vector<ChoiceAccessor>& accessors() {
        [](Scene& s, int k) {
          for (Body& body : s.bodies) body.material.bending_model = static_cast<BendingModel>(k);
        }},
+      {"material.solid_model",
+       [](const Scene& s) {
+         return static_cast<int>(s.bodies.empty() ? Body{}.solid_model
+                                                  : s.bodies.front().solid_model);
+       },
+       [](Scene& s, int k) {
+         for (Body& body : s.bodies) body.solid_model = static_cast<SolidModel>(k);
+       }},
       field("progressive.prolongation", &ProgressiveSettings::prolongation),
       field("progressive.proxy_hessian", &ProgressiveSettings::hessian),
       field("progressive.preview_membrane", &ProgressiveSettings::preview_membrane),

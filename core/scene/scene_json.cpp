@@ -11,6 +11,10 @@
 #include "common/error.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "mesh/mesh_io.hpp"
+#include "mesh/tet_boundary.hpp"
+#include "mesh/tet_generators.hpp"
+#include "mesh/tet_mesh_io.hpp"
+#include "mesh/tet_mesh_validation.hpp"
 #include "scene/choice_table.hpp"
 #include "scene/parameter_table.hpp"
 
@@ -128,8 +132,9 @@ TriangleMesh generated_mesh(const Json& j, const std::string& where) {
     if (!(size.array() > 0.0).all()) scene_error(where + ".size", "must be positive");
     return make_box(size);
   }
-  scene_error(where + ".generator",
-              "unknown generator '" + kind + "' (known: grid, sphere, cylinder, box)");
+  scene_error(
+      where + ".generator",
+      "unknown generator '" + kind + "' (known: grid, sphere, cylinder, box; tet_box for solids)");
 }
 
 TriangleMesh body_mesh(const Json& j, const std::string& where, const std::string& base_dir) {
@@ -142,6 +147,61 @@ TriangleMesh body_mesh(const Json& j, const std::string& where, const std::strin
   }
   if (j.contains("generator")) return generated_mesh(j, where);
   scene_error(where, "needs either 'file' or 'generator'");
+}
+
+/// A body's geometry as Body holds it: a surface, or a solid's vertices, boundary and tets.
+struct BodyGeometry {
+  TriangleMesh mesh;
+  Tets tets;
+};
+
+/// A solid from its tets, validated (naming `label`) before its boundary is extracted.
+BodyGeometry solid_geometry(TetMesh volume, const std::string& label) {
+  validate_tet_mesh(volume, label);
+  BodyGeometry g;
+  g.mesh.faces = tet_boundary_faces(volume);
+  g.mesh.vertices = std::move(volume.vertices);
+  g.tets = std::move(volume.tets);
+  return g;
+}
+
+bool is_tet_mesh_file(const std::filesystem::path& path) {
+  const std::string ext = path.extension().string();
+  return ext == ".mesh" || ext == ".msh" || ext == ".node" || ext == ".ele";
+}
+
+/// {"generator": "tet_box", "size": [x, y, z], "cells": [nx, ny, nz]}: make_tet_box.
+TetMesh generated_tets(const Json& j, const std::string& where) {
+  expect_keys(j, where, {"generator", "size", "cells"});
+  const Vec3 size = vec3(require(j, "size", where), where + ".size");
+  if (!(size.array() > 0.0).all()) scene_error(where + ".size", "must be positive");
+  const Json& cells = require(j, "cells", where);
+  if (!cells.is_array() || cells.size() != 3)
+    scene_error(where + ".cells", "must be three whole numbers [nx, ny, nz]");
+  int n[3];
+  for (int k = 0; k < 3; ++k) {
+    if (!cells[k].is_number_integer() || cells[k].get<long>() < 1 || cells[k].get<long>() > 1000)
+      scene_error(where + ".cells", "must be three whole numbers in [1, 1000]");
+    n[k] = cells[k].get<int>();
+  }
+  return make_tet_box(size, n[0], n[1], n[2]);
+}
+
+/// A body's "mesh": a tet mesh file (.mesh, .msh, .node/.ele) or the tet_box generator make a
+/// solid; any other file or generator a shell (body_mesh).
+BodyGeometry body_geometry(const Json& j, const std::string& where, const std::string& base_dir) {
+  expect_object(j, where);
+  if (j.contains("file") && j.at("file").is_string()) {
+    std::filesystem::path path = j.at("file").get<std::string>();
+    if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
+    if (is_tet_mesh_file(path)) {
+      expect_keys(j, where, {"file"});
+      return solid_geometry(read_tet_mesh(path.string()), path.string());
+    }
+  }
+  if (j.value("generator", std::string()) == "tet_box")
+    return solid_geometry(generated_tets(j, where), where);
+  return {body_mesh(j, where, base_dir), Tets()};
 }
 
 void apply_transform(const Json& j, const std::string& where, Positions& p) {
@@ -190,7 +250,7 @@ Enum table_choice(const Json& j, const char* group, const char* key, const std::
 ShellMaterial material(const Json& j, const std::string& where) {
   expect_keys(j, where,
               {"youngs_modulus", "bending_youngs_modulus", "poisson_ratio", "thickness", "density",
-               "friction", "strain_limit", "bending_model"});
+               "friction", "strain_limit", "bending_model", "solid_model"});
   ShellMaterial m;
   m.youngs_modulus = parameter(j, "material", "youngs_modulus", where);
   m.bending_youngs_modulus = parameter(j, "material", "bending_youngs_modulus", where);
@@ -208,11 +268,15 @@ Body body(const Json& j, const std::string& where, const std::string& base_dir) 
               {"name", "mesh", "transform", "material", "pressure", "pressure_ramp", "velocity"});
   Body b;
   b.name = j.value("name", where);
-  b.mesh = body_mesh(require(j, "mesh", where), where + ".mesh", base_dir);
+  BodyGeometry geometry = body_geometry(require(j, "mesh", where), where + ".mesh", base_dir);
+  b.mesh = std::move(geometry.mesh);
+  b.tets = std::move(geometry.tets);
   if (j.contains("transform"))
     apply_transform(j.at("transform"), where + ".transform", b.mesh.vertices);
-  b.material =
-      material(j.contains("material") ? j.at("material") : Json::object(), where + ".material");
+  const Json material_json = j.contains("material") ? j.at("material") : Json::object();
+  b.material = material(material_json, where + ".material");
+  b.solid_model =
+      table_choice<SolidModel>(material_json, "material", "solid_model", where + ".material");
   b.pressure = number_or(j, "pressure", 0.0, where);
   b.pressure_ramp = number_or(j, "pressure_ramp", 0.0, where);
   b.velocity = vec3_or(j, "velocity", Vec3::Zero(), where);

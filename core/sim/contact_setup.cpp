@@ -35,6 +35,8 @@ double reference_force(const Scene& scene, const ShellModel& model) {
                       std::sqrt(static_cast<double>(model.rest.num_vertices()));
   for (const ShellMaterial& m : model.face_materials)  // stretching an edge by 0.1%
     force = std::max(force, 1e-3 * m.youngs_modulus * m.thickness * edge);
+  for (const SolidMaterial& m : model.tet_materials)  // the same for a solid's edge-sized cell
+    force = std::max(force, 1e-3 * m.youngs_modulus * edge * edge);
   return force;
 }
 

@@ -6,6 +6,7 @@
 #include "energy/neo_hookean_membrane.hpp"
 #include "energy/pressure.hpp"
 #include "energy/tension_field_membrane.hpp"
+#include "energy/tet_elastics.hpp"
 
 namespace progsim {
 namespace {
@@ -49,6 +50,8 @@ ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, b
     out.terms.push_back(bending_term(model));
     out.hinge = dynamic_cast<HingeBending*>(out.terms.back().get());
   }
+  if (fx.has(Effect::elasticity))  // VPD §3.1.3: the volumetric bodies' own elastics
+    out.terms.push_back(std::make_unique<TetElastics>(rest, model.tets, model.tet_materials));
   if (with_gravity && fx.has(Effect::gravity)) {
     auto gravity = std::make_unique<Gravity>(model.vertex_masses, scene.gravity);
     out.gravity = gravity.get();

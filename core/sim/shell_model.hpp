@@ -11,13 +11,16 @@
 namespace progsim {
 
 /// All bodies of a scene as one mesh. Body b owns vertices [vertex_offset[b], vertex_offset[b+1])
-/// and faces [face_offset[b], face_offset[b+1]).
+/// and faces [face_offset[b], face_offset[b+1]). Volumetric bodies add their tets; their faces
+/// (their boundaries) carry a zero thickness: no shell mass, no contact offset.
 struct ShellModel {
   TriangleMesh rest;                          ///< rest (and initial) shape, world space
   std::vector<ShellMaterial> face_materials;  ///< (|F|)
   std::vector<int> vertex_offset;             ///< (bodies + 1)
   std::vector<int> face_offset;               ///< (bodies + 1)
-  Eigen::VectorXd vertex_masses;              ///< lumped masses (|V|), kg
+  Tets tets;                                  ///< (|T| × 4) of the volumetric bodies
+  std::vector<SolidMaterial> tet_materials;   ///< (|T|)
+  Eigen::VectorXd vertex_masses;              ///< lumped masses (|V|), kg: shells and tets
   MeshTopology topology;
 };
 

@@ -23,7 +23,7 @@ static const char* const kScene =
 static const int32_t kClamp[10] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
 
 static void test_the_table_is_listed(void) {
-  CHECK(ps_choice_count() == 6);
+  CHECK(ps_choice_count() == 7);
   ps_choice_info info;
   CHECK(ps_choice_info_get(0, &info) == PS_OK);
   CHECK(strcmp(info.name, "simulation.mode") == 0);
@@ -36,7 +36,7 @@ static void test_the_table_is_listed(void) {
              strcmp(info.options, "auto|level|galerkin") == 0;
   }
   CHECK(found == 1);
-  CHECK_ERROR(ps_choice_info_get(6, &info), PS_ERROR_OUT_OF_RANGE, ps_last_error(), "0 to 5");
+  CHECK_ERROR(ps_choice_info_get(7, &info), PS_ERROR_OUT_OF_RANGE, ps_last_error(), "0 to 6");
   CHECK_ERROR(ps_choice_info_get(0, NULL), PS_ERROR_NULL_ARGUMENT, ps_last_error(), "out");
 }
 

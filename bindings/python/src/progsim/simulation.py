@@ -66,6 +66,7 @@ EFFECTS: Dict[str, int] = {
     "friction": lib.PS_EFFECT_FRICTION,
     "strain_limit": lib.PS_EFFECT_STRAIN_LIMIT,
     "wind": lib.PS_EFFECT_WIND,
+    "elasticity": lib.PS_EFFECT_ELASTICITY,
 }
 
 #: Step modes and their ``ps_mode`` values.

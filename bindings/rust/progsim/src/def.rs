@@ -95,11 +95,13 @@ pub enum Effect {
     /// Aerodynamic drag and lift of [`SimulationDef::wind_velocity`] on every face (dynamic
     /// simulations only).
     Wind,
+    /// Hyperelastic energy of the tets of volumetric bodies.
+    Elasticity,
 }
 
 impl Effect {
     /// Every effect, in bit order.
-    pub const ALL: [Effect; 8] = [
+    pub const ALL: [Effect; 9] = [
         Effect::Membrane,
         Effect::Bending,
         Effect::Gravity,
@@ -108,6 +110,7 @@ impl Effect {
         Effect::Friction,
         Effect::StrainLimit,
         Effect::Wind,
+        Effect::Elasticity,
     ];
 
     /// The C `ps_effect` bit of this effect.
@@ -121,6 +124,7 @@ impl Effect {
             Effect::Friction => sys::PS_EFFECT_FRICTION,
             Effect::StrainLimit => sys::PS_EFFECT_STRAIN_LIMIT,
             Effect::Wind => sys::PS_EFFECT_WIND,
+            Effect::Elasticity => sys::PS_EFFECT_ELASTICITY,
         }
     }
 }
@@ -827,9 +831,10 @@ mod tests {
         effects.set(Effect::Gravity, false);
         effects.set(Effect::Pressure, true);
         assert_eq!(effects.iter().collect::<Vec<_>>(), [Effect::Membrane, Effect::Pressure]);
-        assert_eq!(Effects::all().bits(), 0b1111_1111);
+        assert_eq!(Effects::all().bits(), 0b1_1111_1111);
         assert_eq!(format!("{:?}", Effects::from_bits_retain(0x81)), "{Membrane, Wind}");
-        assert_eq!(format!("{:?}", Effects::from_bits_retain(0x101)), "{Membrane, 0x100}");
+        assert_eq!(format!("{:?}", Effects::from_bits_retain(0x101)), "{Membrane, Elasticity}");
+        assert_eq!(format!("{:?}", Effects::from_bits_retain(0x201)), "{Membrane, 0x200}");
         assert!(Effects::empty().is_empty());
     }
 }

@@ -125,7 +125,7 @@ fn bad_defs_are_rejected_at_creation() {
     let def = SimulationDef { pinned_vertices: vec![99], ..SimulationDef::default() };
     assert_error(Simulation::new(&hierarchy, &def), Status::InvalidScene, "vertex 99");
     let def = SimulationDef {
-        effects: progsim::Effects::from_bits_retain(1 << 8),
+        effects: progsim::Effects::from_bits_retain(1 << 9),
         ..SimulationDef::default()
     };
     assert_error(Simulation::new(&hierarchy, &def), Status::InvalidArgument, "unknown bits");
