@@ -4,7 +4,7 @@
 
 #include "common/error.hpp"
 #include "common/timer.hpp"
-#include "progressive/consistency_projection.hpp"
+#include "progressive/level_refinement.hpp"
 #include "progressive/progressive_simulation.hpp"
 
 namespace progsim {
@@ -19,32 +19,13 @@ Scene dynamic_scene(Scene scene) {
   return scene;
 }
 
-/// P(x) of DOFs (3|V_coarse|) as DOFs (3|V_fine|).
-Vector prolong(const ShellProlongation& p, const Vector& coarse) {
-  const Positions fine = p(Positions(as_positions(coarse)));
-  return as_dofs(fine);
-}
-
-/// U v: a coarse velocity prolonged by the intrinsic part (PD eq. 5's V = ∇P with the offsets
-/// frozen, PD §4.6).
-Vector prolong_velocity(const ShellProlongation& p, const Vector& coarse_velocity) {
-  const Positions fine = p.intrinsic() * as_positions(coarse_velocity);
-  return as_dofs(fine);
-}
-
-/// x̂ of a finer level's step t → t+1 from the coarser frames t and t+1 and the level's own xᵗ.
-Vector predicted(DynamicsPrediction rule, const ShellProlongation& p, double h,
-                 const Vector& fine_now, const Vector& coarse_now,
-                 const Vector& coarse_velocity_now, const Vector& coarse_next) {
-  switch (rule) {
-    case DynamicsPrediction::velocity_only:  // PD++ / VPD eq. 2: x_{l+1}^t + h U v_l^t
-      return fine_now + h * prolong_velocity(p, coarse_velocity_now);
-    case DynamicsPrediction::prolonged_positions:  // PD eq. 5: P(x_l^t) + h U v_l^t
-      return prolong(p, coarse_now) + h * prolong_velocity(p, coarse_velocity_now);
-    case DynamicsPrediction::per_frame:  // PSQ per frame (PD fn. 2): P(x_l^{t+1})
-      return prolong(p, coarse_next);
-  }
-  return fine_now;
+/// The shell prolongation as a level transfer: P(x), and U v with the offsets frozen (PD eq. 5's
+/// V = ∇P, PD §4.6).
+LevelTransfer shell_transfer(const ShellProlongation& p) {
+  return {
+      [&p](const Vector& x) { return Vector(as_dofs(p(Positions(as_positions(x))))); },
+      [&p](const Vector& v) { return Vector(as_dofs(Positions(p.intrinsic() * as_positions(v)))); },
+      &p.intrinsic()};
 }
 
 }  // namespace
@@ -99,41 +80,6 @@ StepRecord ProgressiveDynamics::step_preview() {
   return step;
 }
 
-DynamicLevelRecord start_record(const LevelSimulation& sim) {
-  DynamicLevelRecord record;
-  record.vertices = sim.model().rest.num_vertices();
-  record.start_center_of_mass = sim.center_of_mass();
-  return record;
-}
-
-double com_deviation(const Vec3& com, const DynamicLevelRecord& level,
-                     const DynamicLevelRecord& reference, int t) {
-  const Vec3 reference_moved =
-      reference.steps.at(t).motion.center_of_mass - reference.start_center_of_mass;
-  return ((com - level.start_center_of_mass) - reference_moved).norm();
-}
-
-void add_dynamic_step(DynamicLevelRecord& record, const StepRecord& step, double com_deviation,
-                      double consistency) {
-  DynamicStepRecord r;
-  r.step = step.step;
-  r.time = step.time;
-  r.newton_iterations = step.newton.iterations;
-  r.converged = step.newton.stop == NewtonStop::converged;
-  r.seconds = step.seconds;
-  if (step.motion) r.motion = *step.motion;
-  r.com_deviation = com_deviation;
-  r.consistency = consistency;
-  r.contact = step.contact;
-  r.max_stretch = step.max_stretch;
-  r.wind = step.wind;
-  r.reactions = step.reactions;
-  record.seconds += step.seconds;
-  record.newton_iterations += r.newton_iterations;
-  record.converged_steps += r.converged;
-  record.steps.push_back(std::move(r));
-}
-
 void ProgressiveDynamics::update_scene(Scene scene) {
   check_preview_open("update_scene");
   validate_scene(scene);
@@ -167,39 +113,14 @@ void ProgressiveDynamics::refine(const RefineProgress& progress) {
   if (coarse >= finest())
     fail(Status::out_of_range,
          "level " + std::to_string(coarse) + " is the finest level; there is nothing to refine");
-  const Trajectory& from = trajectories_[coarse];
-  const int steps = from.num_frames() - 1;
-  if (steps < 1) fail(Status::wrong_call_order, "refine: preview at least one step first");
-  const ShellProlongation& p = *operators_->next(coarse);
-  const double h = scene_.time_step;
-  const DynamicsPrediction rule = scene_.progressive.prediction;
+  if (trajectories_[coarse].num_frames() < 2)
+    fail(Status::wrong_call_order, "refine: preview at least one step first");
   std::unique_ptr<LevelSimulation> sim = make_level(fine);
-  Vector x_now, v_now, x_next, v_next;
-  from.read(0, x_now, v_now);
-  sim->set_velocities(prolong_velocity(p, v_now));  // v_{l+1}^0 = U v_l^0
   Trajectory frames(fine, sim->model().rest.num_vertices());
-  frames.append(sim->dofs(), sim->velocities());
-  const ConsistencyProjection projection(p.intrinsic(), sim->model().vertex_masses,
-                                         masses_[coarse]);
   DynamicLevelRecord record = start_record(*sim);
-  for (int t = 0; t < steps; ++t) {
-    from.read(t + 1, x_next, v_next);
-    StepTargets targets;
-    targets.predicted = predicted(rule, p, h, sim->dofs(), x_now, v_now, x_next);
-    if (scene_.progressive.consistency_weight > 0.0) targets.consistency = prolong(p, x_next);
-    const StepRecord step = sim->step(targets);  // PD eq. 6
-    frames.append(sim->dofs(), sim->velocities());
-    const double deviation =
-        step.motion ? com_deviation(step.motion->center_of_mass, record, records_[0], t) : 0.0;
-    add_dynamic_step(record, step, deviation, projection.distance(sim->dofs(), x_next));
-    if (progress && !progress(t + 1, steps))
-      fail(Status::cancelled, "refining level " + std::to_string(coarse) + " into level " +
-                                  std::to_string(fine) + " was cancelled at step " +
-                                  std::to_string(t + 1) + " of " + std::to_string(steps));
-    std::swap(x_now, x_next);
-    std::swap(v_now, v_next);
-  }
-  record.terms = sim->term_totals();
+  const CoarserLevel from{&trajectories_[coarse], &masses_[coarse], &records_[0], coarse};
+  animate_finer_level(*sim, from, shell_transfer(*operators_->next(coarse)), scene_.progressive,
+                      scene_.time_step, progress, frames, record);
   masses_.push_back(sim->model().vertex_masses);
   trajectories_.push_back(std::move(frames));
   records_.push_back(std::move(record));

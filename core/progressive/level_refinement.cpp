@@ -1,0 +1,60 @@
+#include "progressive/level_refinement.hpp"
+
+#include <string>
+
+#include "common/error.hpp"
+#include "progressive/consistency_projection.hpp"
+
+namespace progsim {
+namespace {
+
+/// x̂ of a finer level's step t → t+1 from the coarser frames t and t+1 and the level's own xᵗ.
+Vector predicted(DynamicsPrediction rule, const LevelTransfer& p, double h, const Vector& fine_now,
+                 const Vector& coarse_now, const Vector& coarse_velocity_now,
+                 const Vector& coarse_next) {
+  switch (rule) {
+    case DynamicsPrediction::velocity_only:  // PD++ / VPD eq. 2: x_{l+1}^t + h U v_l^t
+      return fine_now + h * p.velocities(coarse_velocity_now);
+    case DynamicsPrediction::prolonged_positions:  // PD eq. 5: P(x_l^t) + h U v_l^t
+      return p.positions(coarse_now) + h * p.velocities(coarse_velocity_now);
+    case DynamicsPrediction::per_frame:  // PSQ per frame (PD fn. 2): P(x_l^{t+1})
+      return p.positions(coarse_next);
+  }
+  return fine_now;
+}
+
+}  // namespace
+
+void animate_finer_level(LevelSimulation& sim, const CoarserLevel& coarse,
+                         const LevelTransfer& transfer, const ProgressiveSettings& settings,
+                         double time_step, const RefineProgress& progress, Trajectory& frames,
+                         DynamicLevelRecord& record) {
+  const int steps = coarse.frames->num_frames() - 1;
+  Vector x_now, v_now, x_next, v_next;
+  coarse.frames->read(0, x_now, v_now);
+  sim.set_velocities(transfer.velocities(v_now));  // v_{l+1}^0 = U v_l^0
+  frames.append(sim.dofs(), sim.velocities());
+  const ConsistencyProjection projection(*transfer.intrinsic, sim.model().vertex_masses,
+                                         *coarse.masses);
+  for (int t = 0; t < steps; ++t) {
+    coarse.frames->read(t + 1, x_next, v_next);
+    StepTargets targets;
+    targets.predicted =
+        predicted(settings.prediction, transfer, time_step, sim.dofs(), x_now, v_now, x_next);
+    if (settings.consistency_weight > 0.0) targets.consistency = transfer.positions(x_next);
+    const StepRecord step = sim.step(targets);  // PD eq. 6
+    frames.append(sim.dofs(), sim.velocities());
+    const double deviation =
+        step.motion ? com_deviation(step.motion->center_of_mass, record, *coarse.preview, t) : 0.0;
+    add_dynamic_step(record, step, deviation, projection.distance(sim.dofs(), x_next));
+    if (progress && !progress(t + 1, steps))
+      fail(Status::cancelled, "refining level " + std::to_string(coarse.index) + " into level " +
+                                  std::to_string(coarse.index + 1) + " was cancelled at step " +
+                                  std::to_string(t + 1) + " of " + std::to_string(steps));
+    std::swap(x_now, x_next);
+    std::swap(v_now, v_next);
+  }
+  record.terms = sim.term_totals();
+}
+
+}  // namespace progsim

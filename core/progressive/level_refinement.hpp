@@ -1,0 +1,41 @@
+#pragma once
+/// @file Animating a finer level over a coarser level's trajectory (PD eqs. 5–6, Alg. 1 lines
+/// 7–14; PD++ / VPD eq. 2 velocity-only prediction; VPD eq. 4 consistency penalty): the loop both
+/// progressive animation drivers run, shells through the shell prolongation, solids through W.
+#include <functional>
+
+#include "hierarchy/prolongation.hpp"
+#include "progressive/dynamic_records.hpp"
+#include "progressive/trajectory.hpp"
+#include "scene/scene.hpp"
+#include "sim/level_simulation.hpp"
+
+namespace progsim {
+
+/// How a finer level sees the coarser one: P (positions, DOFs → DOFs), U (velocities, DOFs →
+/// DOFs) and U as a matrix (for the consistency metric, VPD App. C eq. 19).
+struct LevelTransfer {
+  std::function<Vector(const Vector&)> positions;
+  std::function<Vector(const Vector&)> velocities;
+  const ProlongationMatrix* intrinsic = nullptr;
+};
+
+/// The coarser level an animation refines: its frames, its masses and the preview's record
+/// (the reference of the centre-of-mass deviation).
+struct CoarserLevel {
+  const Trajectory* frames = nullptr;
+  const Eigen::VectorXd* masses = nullptr;
+  const DynamicLevelRecord* preview = nullptr;
+  int index = 0;  ///< the coarser level's number, for messages
+};
+
+/// Animates `sim` (the finer level at its initial state) over every step of `coarse`: its
+/// velocities start as U v_l⁰, each step's x̂ follows `prediction` and, with a consistency
+/// weight, the penalty pulls toward P(x_l^{t+1}). Appends every frame to `frames` and every step
+/// to `record`. Throws Error(cancelled) when `progress` returns false.
+void animate_finer_level(LevelSimulation& sim, const CoarserLevel& coarse,
+                         const LevelTransfer& transfer, const ProgressiveSettings& settings,
+                         double time_step, const RefineProgress& progress, Trajectory& frames,
+                         DynamicLevelRecord& record);
+
+}  // namespace progsim

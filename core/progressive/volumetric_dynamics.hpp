@@ -1,0 +1,70 @@
+#pragma once
+/// @file Volumetric Progressive Dynamics (VPD, 2025, §3.2–3.3): the progressive animation of a
+/// tetrahedral solid. Each level is simulated with its own elastics (VPD §3.2: coarse levels are
+/// not proxies of the finest), the preview on the coarsest; every finer level is animated over
+/// the previewed span with its steps predicted from the coarser trajectory through the
+/// barycentric prolongation W (VPD eq. 2) and the optional consistency penalty (VPD eq. 4).
+#include <memory>
+#include <vector>
+
+#include "hierarchy/tet_hierarchy.hpp"
+#include "progressive/dynamic_records.hpp"
+#include "progressive/trajectory.hpp"
+#include "scene/scene.hpp"
+#include "sim/level_simulation.hpp"
+
+namespace progsim {
+
+/// The VPD driver. Level 0 is the coarsest.
+class VolumetricDynamics {
+ public:
+  /// `scene`: dynamic, one volumetric body whose mesh is `hierarchy`'s finest level. Throws
+  /// Error(invalid_scene) for a quasistatic scene, Error(invalid_argument) if the hierarchy does
+  /// not match the body or has fewer than two levels, Error(unsupported) for several bodies,
+  /// handles or loads (their vertex sets have no counterpart on coarse levels yet), and as
+  /// validate_scene().
+  VolumetricDynamics(Scene scene, std::shared_ptr<const TetHierarchy> hierarchy);
+  ~VolumetricDynamics();
+  VolumetricDynamics(const VolumetricDynamics&) = delete;
+  VolumetricDynamics& operator=(const VolumetricDynamics&) = delete;
+
+  /// Sets the preview's velocities (3|V_0|, m/s) before its first step. Throws
+  /// Error(wrong_call_order) after it, Error(invalid_argument) on a wrong size or non-finite entry.
+  void set_preview_velocities(const Vector& velocities);
+  /// One preview step on level 0. Throws Error(wrong_call_order) once a finer level exists.
+  StepRecord step_preview();
+  /// Animates level level() + 1 over every previewed step (VPD eq. 2 with
+  /// scene.progressive.prediction; the penalty with scene.progressive.consistency_weight > 0),
+  /// from its rest shape with the prolonged initial velocities. Throws Error(out_of_range) at the
+  /// finest level, Error(wrong_call_order) before any preview step, Error(cancelled) if
+  /// `progress` says stop; on Error nothing changed.
+  void refine(const RefineProgress& progress = nullptr);
+
+  /// The finest level computed so far (0: only the preview).
+  int level() const { return static_cast<int>(trajectories_.size()) - 1; }
+  int finest() const { return static_cast<int>(hierarchy_->levels.size()) - 1; }
+  const TetHierarchy& hierarchy() const { return *hierarchy_; }
+  /// The scene of level `level`: the scene with its body's mesh and tets replaced by the level's.
+  Scene level_scene(int level) const;
+  /// Frames of a computed level (steps + 1). Throws Error(out_of_range) otherwise.
+  int num_frames(int level) const;
+  /// Positions and velocities (|V_level| × 3) of a frame. Throws Error(out_of_range).
+  void read_frame(int level, int frame, Positions& positions, Positions& velocities) const;
+  /// What a computed level did, step by step. Throws Error(out_of_range).
+  const DynamicLevelRecord& record(int level) const;
+  /// The preview's simulation (level 0, live).
+  const LevelSimulation& preview() const { return *preview_; }
+
+ private:
+  std::unique_ptr<LevelSimulation> make_level(int level) const;
+  void check_level(int level) const;
+
+  Scene scene_;
+  std::shared_ptr<const TetHierarchy> hierarchy_;
+  std::unique_ptr<LevelSimulation> preview_;
+  std::vector<Trajectory> trajectories_;
+  std::vector<DynamicLevelRecord> records_;
+  std::vector<Eigen::VectorXd> masses_;
+};
+
+}  // namespace progsim
