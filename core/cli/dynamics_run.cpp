@@ -1,6 +1,8 @@
 #include "cli/dynamics_run.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -14,6 +16,7 @@
 #include "progressive/dynamics_plots.hpp"
 #include "progressive/dynamics_report.hpp"
 #include "progressive/progressive_dynamics.hpp"
+#include "progressive/volumetric_dynamics.hpp"
 #include "sim/obstacle_script.hpp"
 
 namespace fs = std::filesystem;
@@ -36,7 +39,7 @@ TriangleMesh scripted_obstacles(const Scene& scene, const ObstacleScript& script
 /// Writes the frames of an animation as they are computed.
 class FrameWriter {
  public:
-  FrameWriter(const ProgressiveDynamics& pd, int steps, fs::path dir)
+  FrameWriter(const ProgressiveAnimation& pd, int steps, fs::path dir)
       : pd_(pd), script_(pd.scene()), steps_(steps), dir_(std::move(dir)) {}
 
   /// Writes frames first..last of `level` that fall on the output grid (every output_every
@@ -44,7 +47,7 @@ class FrameWriter {
   void write(int level, int first, int last) const {
     const fs::path folder = dir_ / ("level_" + std::to_string(level));
     fs::create_directories(folder);
-    const Faces& faces = pd_.hierarchy().levels[level].rest.faces;
+    const Faces& faces = pd_.surface_faces(level);
     Positions x, v;
     for (int frame = first; frame <= last; ++frame) {
       if (frame % pd_.scene().output_every != 0 && frame != steps_) continue;
@@ -57,7 +60,7 @@ class FrameWriter {
   }
 
  private:
-  const ProgressiveDynamics& pd_;
+  const ProgressiveAnimation& pd_;
   ObstacleScript script_;
   int steps_;
   fs::path dir_;
@@ -72,7 +75,7 @@ void check_finite(const DynamicLevelRecord& record, int level) {
 }
 
 /// The preview: `steps` steps on level 0, each logged and its frame written.
-void preview(ProgressiveDynamics& pd, int steps, const FrameWriter& frames, std::ofstream& log,
+void preview(ProgressiveAnimation& pd, int steps, const FrameWriter& frames, std::ofstream& log,
              Outcome& outcome, bool quiet) {
   ProgressBar bar(pd.scene().name + " (preview, level 0)", steps);
   frames.write(0, 0, 0);
@@ -90,7 +93,7 @@ void preview(ProgressiveDynamics& pd, int steps, const FrameWriter& frames, std:
 }
 
 /// Animates the next level over the previewed steps, then logs it and writes its frames.
-void refine(ProgressiveDynamics& pd, const FrameWriter& frames, std::ofstream& log, bool quiet) {
+void refine(ProgressiveAnimation& pd, const FrameWriter& frames, std::ofstream& log, bool quiet) {
   const int level = pd.level() + 1;
   const int steps = pd.num_frames(0) - 1;
   ProgressBar bar(pd.scene().name + " (level " + std::to_string(level) + ")", steps);
@@ -115,11 +118,20 @@ void check_converged(const DynamicLevelSummary& last, Outcome& outcome) {
                     " steps ended short of the Newton tolerance (solver.max_newton_iterations)";
 }
 
+/// Progressive Dynamics for shells, its volumetric form (VPD) for a solid.
+std::unique_ptr<ProgressiveAnimation> make_animation(Scene scene) {
+  if (std::none_of(scene.bodies.begin(), scene.bodies.end(), is_solid))
+    return std::make_unique<ProgressiveDynamics>(std::move(scene));
+  auto hierarchy = std::make_shared<const TetHierarchy>(build_scene_tet_hierarchy(scene));
+  return std::make_unique<VolumetricDynamics>(std::move(scene), std::move(hierarchy));
+}
+
 }  // namespace
 
 int run_progressive_dynamics(Scene scene, const RunCommand& opt) {
   Timer total;
-  ProgressiveDynamics pd(std::move(scene));
+  const std::unique_ptr<ProgressiveAnimation> animation = make_animation(std::move(scene));
+  ProgressiveAnimation& pd = *animation;
   const Scene& s = pd.scene();
   const int steps = opt.steps > 0 ? opt.steps : s.num_steps();
   const fs::path dir(opt.out_dir);
@@ -152,7 +164,7 @@ int run_progressive_dynamics(Scene scene, const RunCommand& opt) {
                       std::to_string(pd.finest() + 1) + " animated, the finer levels not";
   log.close();
   nlohmann::json summary = {{"scene", s.name},
-                            {"method", "progressive dynamics"},
+                            {"method", pd.method()},
                             {"steps", steps},
                             {"time_step", s.time_step},
                             {"prediction", prediction_name(s.progressive.prediction)},

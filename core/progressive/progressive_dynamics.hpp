@@ -11,6 +11,7 @@
 #include "hierarchy/shell_prolongation.hpp"
 #include "progressive/dynamic_records.hpp"
 #include "progressive/level_operators.hpp"
+#include "progressive/progressive_animation.hpp"
 #include "progressive/trajectory.hpp"
 #include "scene/scene.hpp"
 #include "sim/level_simulation.hpp"
@@ -21,7 +22,7 @@ namespace progsim {
 /// by step (PD eq. 4: the proxy energy, each step solved to the scene's tolerance); refine()
 /// then animates the next level over every previewed step (PD eqs. 5–6, Alg. 1 lines 7–14).
 /// Every level's frames are streamed to disk (Trajectory).
-class ProgressiveDynamics {
+class ProgressiveDynamics final : public ProgressiveAnimation {
  public:
   /// Builds the scene's hierarchy as ProgressiveSimulation does, or uses `hierarchy` (built
   /// from the scene's merged bodies with its handles as vertex groups). Throws
@@ -35,7 +36,8 @@ class ProgressiveDynamics {
 
   /// One preview step on level 0; its frame is appended to level 0's trajectory. Throws
   /// Error(wrong_call_order) once a finer level has been computed (restart() first).
-  StepRecord step_preview();
+  const char* method() const override { return "progressive dynamics"; }
+  StepRecord step_preview() override;
   /// Animates level level() + 1 over every previewed step: its first frame is the level's
   /// initial state (its rest shape, the prolonged initial velocities: P recovers rest shapes,
   /// so this is P(x_l^0), crossing-free as every level of the hierarchy is), and each step's
@@ -43,7 +45,7 @@ class ProgressiveDynamics {
   /// optional consistency penalty. Throws Error(out_of_range) at the finest level,
   /// Error(wrong_call_order) before any preview step, Error(cancelled) if `progress` says stop;
   /// on Error nothing changed.
-  void refine(const RefineProgress& progress = nullptr);
+  void refine(const RefineProgress& progress = nullptr) override;
   /// Discards every level's frames and starts the preview again from the initial state (after
   /// update_scene(), to preview a variation).
   void restart();
@@ -58,21 +60,26 @@ class ProgressiveDynamics {
   void set_preview_velocities(const Vector& velocities);
 
   /// The finest level computed so far (0: only the preview).
-  int level() const { return static_cast<int>(trajectories_.size()) - 1; }
-  int finest() const { return hierarchy_->finest(); }
+  int level() const override { return static_cast<int>(trajectories_.size()) - 1; }
+  int finest() const override { return hierarchy_->finest(); }
   const MeshHierarchy& hierarchy() const { return *hierarchy_; }
   std::shared_ptr<const MeshHierarchy> shared_hierarchy() const { return hierarchy_; }
-  const Scene& scene() const { return scene_; }
+  const Scene& scene() const override { return scene_; }
   /// Frames of level `level` (steps + 1: frame 0 is the initial state). Throws
   /// Error(out_of_range) for a level that does not exist or has not been computed.
-  int num_frames(int level) const;
+  int num_frames(int level) const override;
   /// Positions and velocities (|V_level| × 3) of frame `frame` of level `level`. Throws
   /// Error(out_of_range) for a level or frame not computed.
-  void read_frame(int level, int frame, Positions& positions, Positions& velocities) const;
+  void read_frame(int level, int frame, Positions& positions,
+                  Positions& velocities) const override;
   /// What level `level` did, step by step. Throws Error(out_of_range) as num_frames().
-  const DynamicLevelRecord& record(int level) const;
+  const DynamicLevelRecord& record(int level) const override;
   /// The preview's simulation (level 0, live).
-  const LevelSimulation& preview() const { return *preview_; }
+  const LevelSimulation& preview() const override { return *preview_; }
+  /// The faces of hierarchy level `level`'s rest mesh.
+  const Faces& surface_faces(int level) const override {
+    return hierarchy_->levels.at(level).rest.faces;
+  }
 
  private:
   /// Level `level` at its initial state, solved with the scene's own solver (PD solves each

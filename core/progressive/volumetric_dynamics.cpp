@@ -45,10 +45,29 @@ LevelTransfer tet_transfer(const ProlongationMatrix& w) {
 
 }  // namespace
 
+TetHierarchy build_scene_tet_hierarchy(const Scene& scene, HierarchyProgress progress,
+                                       void* user) {
+  validate_scene(scene);
+  if (scene.bodies.size() != 1 || !is_solid(scene.bodies[0]))
+    fail(Status::unsupported, scene.name + ": volumetric progressive dynamics animates one "
+                                           "volumetric body so far");
+  const Body& body = scene.bodies[0];
+  const TetMesh finest{body.mesh.vertices, body.tets};
+  const int boundary_vertices = static_cast<int>(extract_tet_boundary(finest).volume_vertex.size());
+  const ProgressiveSettings& p = scene.progressive;
+  TetHierarchyOptions options;
+  options.coarse_boundary_vertex_counts =
+      !p.level_vertices.empty()
+          ? p.level_vertices
+          : geometric_level_counts(boundary_vertices, p.coarsening_ratio, p.coarse_levels);
+  return build_tet_hierarchy(finest, options, progress, user);
+}
+
 VolumetricDynamics::VolumetricDynamics(Scene scene, std::shared_ptr<const TetHierarchy> hierarchy)
     : scene_(std::move(scene)), hierarchy_(std::move(hierarchy)) {
   if (!hierarchy_) fail(Status::invalid_argument, "VolumetricDynamics: no tet hierarchy");
   check_volumetric_scene(scene_, *hierarchy_);
+  for (const TetMesh& mesh : hierarchy_->levels) surface_faces_.push_back(tet_boundary_faces(mesh));
   preview_ = make_level(0);
   trajectories_.emplace_back(0, preview_->model().rest.num_vertices());
   trajectories_[0].append(preview_->dofs(), preview_->velocities());
@@ -63,7 +82,7 @@ Scene VolumetricDynamics::level_scene(int level) const {
   const TetMesh& mesh = hierarchy_->levels.at(level);
   Body& body = s.bodies[0];
   body.mesh.vertices = mesh.vertices;
-  body.mesh.faces = tet_boundary_faces(mesh);
+  body.mesh.faces = surface_faces_.at(level);
   body.tets = mesh.tets;
   return s;
 }

@@ -9,6 +9,7 @@
 
 #include "hierarchy/tet_hierarchy.hpp"
 #include "progressive/dynamic_records.hpp"
+#include "progressive/progressive_animation.hpp"
 #include "progressive/trajectory.hpp"
 #include "scene/scene.hpp"
 #include "sim/level_simulation.hpp"
@@ -16,7 +17,7 @@
 namespace progsim {
 
 /// The VPD driver. Level 0 is the coarsest.
-class VolumetricDynamics {
+class VolumetricDynamics final : public ProgressiveAnimation {
  public:
   /// `scene`: dynamic, one volumetric body whose mesh is `hierarchy`'s finest level. Throws
   /// Error(invalid_scene) for a quasistatic scene, Error(invalid_argument) if the hierarchy does
@@ -32,28 +33,33 @@ class VolumetricDynamics {
   /// Error(wrong_call_order) after it, Error(invalid_argument) on a wrong size or non-finite entry.
   void set_preview_velocities(const Vector& velocities);
   /// One preview step on level 0. Throws Error(wrong_call_order) once a finer level exists.
-  StepRecord step_preview();
+  const char* method() const override { return "volumetric progressive dynamics"; }
+  StepRecord step_preview() override;
   /// Animates level level() + 1 over every previewed step (VPD eq. 2 with
   /// scene.progressive.prediction; the penalty with scene.progressive.consistency_weight > 0),
   /// from its rest shape with the prolonged initial velocities. Throws Error(out_of_range) at the
   /// finest level, Error(wrong_call_order) before any preview step, Error(cancelled) if
   /// `progress` says stop; on Error nothing changed.
-  void refine(const RefineProgress& progress = nullptr);
+  void refine(const RefineProgress& progress = nullptr) override;
 
   /// The finest level computed so far (0: only the preview).
-  int level() const { return static_cast<int>(trajectories_.size()) - 1; }
-  int finest() const { return static_cast<int>(hierarchy_->levels.size()) - 1; }
+  int level() const override { return static_cast<int>(trajectories_.size()) - 1; }
+  int finest() const override { return static_cast<int>(hierarchy_->levels.size()) - 1; }
   const TetHierarchy& hierarchy() const { return *hierarchy_; }
+  const Scene& scene() const override { return scene_; }
+  /// The boundary faces of tet level `level`.
+  const Faces& surface_faces(int level) const override { return surface_faces_.at(level); }
   /// The scene of level `level`: the scene with its body's mesh and tets replaced by the level's.
   Scene level_scene(int level) const;
   /// Frames of a computed level (steps + 1). Throws Error(out_of_range) otherwise.
-  int num_frames(int level) const;
+  int num_frames(int level) const override;
   /// Positions and velocities (|V_level| × 3) of a frame. Throws Error(out_of_range).
-  void read_frame(int level, int frame, Positions& positions, Positions& velocities) const;
+  void read_frame(int level, int frame, Positions& positions,
+                  Positions& velocities) const override;
   /// What a computed level did, step by step. Throws Error(out_of_range).
-  const DynamicLevelRecord& record(int level) const;
+  const DynamicLevelRecord& record(int level) const override;
   /// The preview's simulation (level 0, live).
-  const LevelSimulation& preview() const { return *preview_; }
+  const LevelSimulation& preview() const override { return *preview_; }
 
  private:
   std::unique_ptr<LevelSimulation> make_level(int level) const;
@@ -65,6 +71,14 @@ class VolumetricDynamics {
   std::vector<Trajectory> trajectories_;
   std::vector<DynamicLevelRecord> records_;
   std::vector<Eigen::VectorXd> masses_;
+  std::vector<Faces> surface_faces_;  // per level, tet_boundary_faces
 };
+
+/// The tet hierarchy of a scene's one volumetric body (build_tet_hierarchy): coarse boundary
+/// vertex counts from scene.progressive (level_vertices, or coarse_levels coarsened by
+/// coarsening_ratio from the body's boundary vertex count). Throws as check and
+/// build_tet_hierarchy do; Error(unsupported) as VolumetricDynamics.
+TetHierarchy build_scene_tet_hierarchy(const Scene& scene, HierarchyProgress progress = nullptr,
+                                       void* user = nullptr);
 
 }  // namespace progsim

@@ -1,0 +1,42 @@
+#pragma once
+/// @file What a progressive animation driver offers its users (the CLI, benchmarks): a preview
+/// stepped on level 0, finer levels animated over it, and every level's frames and records.
+/// ProgressiveDynamics (shells, PD) and VolumetricDynamics (tet solids, VPD) implement it.
+#include "progressive/dynamic_records.hpp"
+#include "scene/scene.hpp"
+#include "sim/level_simulation.hpp"
+
+namespace progsim {
+
+/// A progressive animation. Level 0 is the coarsest.
+class ProgressiveAnimation {
+ public:
+  virtual ~ProgressiveAnimation() = default;
+
+  /// The method's name for summaries ("progressive dynamics", ...).
+  virtual const char* method() const = 0;
+
+  /// One preview step on level 0 (Error(wrong_call_order) once a finer level exists).
+  virtual StepRecord step_preview() = 0;
+  /// Animates level level() + 1 over every previewed step (Error(out_of_range) at the finest,
+  /// Error(wrong_call_order) before a preview step, Error(cancelled) when `progress` says stop).
+  virtual void refine(const RefineProgress& progress = nullptr) = 0;
+  /// The finest level computed so far (0: only the preview).
+  virtual int level() const = 0;
+  /// The index of the finest level.
+  virtual int finest() const = 0;
+  virtual const Scene& scene() const = 0;
+  /// The preview's simulation (level 0, live).
+  virtual const LevelSimulation& preview() const = 0;
+  /// Frames of a computed level (steps + 1). Error(out_of_range) for others.
+  virtual int num_frames(int level) const = 0;
+  /// Positions and velocities (|V_level| × 3) of a frame of a computed level.
+  virtual void read_frame(int level, int frame, Positions& positions,
+                          Positions& velocities) const = 0;
+  /// What a computed level did, step by step.
+  virtual const DynamicLevelRecord& record(int level) const = 0;
+  /// The surface faces of level `level` (its shell, or its solid's boundary) over its vertices.
+  virtual const Faces& surface_faces(int level) const = 0;
+};
+
+}  // namespace progsim
