@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "mesh/tet_boundary.hpp"
+#include "mesh/triangle_mesh.hpp"
 
 namespace progsim {
 namespace {
@@ -27,6 +28,9 @@ using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterato
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int,
                                                       CGAL::Box_intersection_d::ID_EXPLICIT>;
+
+/// Barycentric slack within which a vertex counts as inside a tet (relative to 1).
+constexpr double kContainmentTolerance = 1e-9;
 
 Point point(const Positions& v, int i) {
   return Point(v(i, 0), v(i, 1), v(i, 2));
@@ -75,19 +79,35 @@ std::vector<int> containing_tets(const TetMesh& coarse, const Positions& points)
     }
     tet_boxes.emplace_back(lo, hi, t);
   }
+  // Points are boxes grown by a hair so that tets they miss by rounding are found too.
+  const double hair = kContainmentTolerance * bounding_box_diagonal(coarse.vertices);
   point_boxes.reserve(points.rows());
   for (int i = 0; i < points.rows(); ++i) {
-    double p[3] = {points(i, 0), points(i, 1), points(i, 2)};
-    point_boxes.emplace_back(p, p, i);
+    double lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = points(i, d) - hair;
+      hi[d] = points(i, d) + hair;
+    }
+    point_boxes.emplace_back(lo, hi, i);
   }
   std::vector<int> home(points.rows(), -1);
-  CGAL::box_intersection_d(
-      point_boxes.begin(), point_boxes.end(), tet_boxes.begin(), tet_boxes.end(),
-      [&](const Box& p, const Box& t) {
-        const int i = p.info(), tet = t.info();
-        if ((home[i] < 0 || tet < home[i]) && contains(coarse, tet, point(points, i)))
-          home[i] = tet;
-      });
+  std::vector<double> score(points.rows(), -kContainmentTolerance);
+  CGAL::box_intersection_d(point_boxes.begin(), point_boxes.end(), tet_boxes.begin(),
+                           tet_boxes.end(), [&](const Box& p, const Box& t) {
+                             const int i = p.info(), tet = t.info();
+                             const Eigen::Vector3d x = points.row(i).transpose();
+                             // Exact containment scores above any weight; otherwise the smallest
+                             // weight, which must be at least −tolerance: a vertex a mesher left an
+                             // ulp outside a shared plane.
+                             const double s =
+                                 contains(coarse, tet, point(points, i))
+                                     ? 2.0
+                                     : tet_barycentric_weights(coarse, tet, x).minCoeff();
+                             if (s > score[i] || (s == score[i] && home[i] >= 0 && tet < home[i])) {
+                               score[i] = s;
+                               home[i] = tet;
+                             }
+                           });
   return home;
 }
 

@@ -11,7 +11,9 @@ namespace progsim {
 
 /// How a fine vertex was bound.
 enum class BindingKind {
-  inside,    ///< it lies in its tet (closed, by CGAL's exact orientation predicates)
+  /// it lies in its tet: closed, by CGAL's exact orientation predicates, or within 1e-9 of it in
+  /// barycentric weights (a vertex a mesher left an ulp outside a shared boundary plane)
+  inside,
   ray,       ///< outside: the first coarse boundary face hit by a ray along an incident edge
   neighbor,  ///< outside, no ray hit: the closest of its bound neighbours' tets
   nearest,   ///< outside, no hit and no bound neighbour: the tet of the nearest boundary face

@@ -70,8 +70,7 @@ class ProgressiveDynamics final : public ProgressiveAnimation {
   int num_frames(int level) const override;
   /// Positions and velocities (|V_level| × 3) of frame `frame` of level `level`. Throws
   /// Error(out_of_range) for a level or frame not computed.
-  void read_frame(int level, int frame, Positions& positions,
-                  Positions& velocities) const override;
+  void read_frame(int level, int frame, Positions& positions, Positions& velocities) const override;
   /// What level `level` did, step by step. Throws Error(out_of_range) as num_frames().
   const DynamicLevelRecord& record(int level) const override;
   /// The preview's simulation (level 0, live).

@@ -45,12 +45,12 @@ LevelTransfer tet_transfer(const ProlongationMatrix& w) {
 
 }  // namespace
 
-TetHierarchy build_scene_tet_hierarchy(const Scene& scene, HierarchyProgress progress,
-                                       void* user) {
+TetHierarchy build_scene_tet_hierarchy(const Scene& scene, HierarchyProgress progress, void* user) {
   validate_scene(scene);
   if (scene.bodies.size() != 1 || !is_solid(scene.bodies[0]))
-    fail(Status::unsupported, scene.name + ": volumetric progressive dynamics animates one "
-                                           "volumetric body so far");
+    fail(Status::unsupported, scene.name +
+                                  ": volumetric progressive dynamics animates one "
+                                  "volumetric body so far");
   const Body& body = scene.bodies[0];
   const TetMesh finest{body.mesh.vertices, body.tets};
   const int boundary_vertices = static_cast<int>(extract_tet_boundary(finest).volume_vertex.size());

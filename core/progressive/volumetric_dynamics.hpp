@@ -54,8 +54,7 @@ class VolumetricDynamics final : public ProgressiveAnimation {
   /// Frames of a computed level (steps + 1). Throws Error(out_of_range) otherwise.
   int num_frames(int level) const override;
   /// Positions and velocities (|V_level| × 3) of a frame. Throws Error(out_of_range).
-  void read_frame(int level, int frame, Positions& positions,
-                  Positions& velocities) const override;
+  void read_frame(int level, int frame, Positions& positions, Positions& velocities) const override;
   /// What a computed level did, step by step. Throws Error(out_of_range).
   const DynamicLevelRecord& record(int level) const override;
   /// The preview's simulation (level 0, live).

@@ -803,3 +803,23 @@ TEST_F(Cli, AccuracyOnADynamicSceneAnimatesEveryLevelProgressivelyAndDirectly) {
   EXPECT_EQ(refused.exit_code, 2) << refused.output;
   EXPECT_FALSE(fs::exists(dir_ / "x"));
 }
+
+TEST_F(Cli, AVolumetricSceneWithLevelsRunsVolumetricProgressiveDynamics) {
+  const fs::path out = dir_ / "jelly";
+  const CommandResult r =
+      run_cli("run " + std::string(PROGSIM_SOURCE_DIR) +
+              "/scenes/vpd_jelly_drop.json --steps 10 --out " + out.string() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto summary = read_summary(out);
+  EXPECT_EQ(summary.at("status"), "ok");
+  EXPECT_EQ(summary.at("method"), "volumetric progressive dynamics");
+  ASSERT_EQ(summary.at("levels").size(), 3u);
+  int previous = 0;
+  for (const auto& level : summary.at("levels")) {  // coarse to fine
+    EXPECT_GT(level.at("vertices").get<int>(), previous);
+    previous = level.at("vertices").get<int>();
+  }
+  EXPECT_EQ(previous, 729);  // the finest level is the scene's own 8³-cell jelly
+  EXPECT_TRUE(fs::exists(out / "level_2" / "frame_00010.obj"));
+  EXPECT_EQ(read_log(out).size(), 30u);  // 10 steps on each of 3 levels
+}

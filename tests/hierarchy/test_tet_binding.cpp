@@ -145,3 +145,22 @@ TEST(TetBinding, NeverBindsAcrossASlitThatNearestTetBindingWouldCross) {
   EXPECT_GT(prong_a, 20);
   EXPECT_GT(by_ray, 0);  // the slit face's vertices were bound by rays, not containment
 }
+
+TEST(TetBinding, AVertexAnUlpOutsideACoarseFaceBindsInsideTheTetBehindIt) {
+  // A mesher (CGAL Mesh_3's perturbation) can leave a boundary vertex an ulp off a plane both
+  // levels share: it must bind inside, not by ray to a neighbouring tet with negative weights.
+  const TetMesh coarse = make_tet_box(Vec3(1.0, 1.0, 1.0), 2, 2, 2);
+  TetMesh fine = make_tet_box(Vec3(1.0, 1.0, 1.0), 3, 3, 3);
+  int moved = 0;
+  for (int v = 0; v < fine.num_vertices(); ++v)
+    if (fine.vertices(v, 1) == -0.5) {
+      fine.vertices(v, 1) = std::nextafter(-0.5, -1.0);  // an ulp below the face y = −0.5
+      ++moved;
+    }
+  ASSERT_GT(moved, 0);
+  const std::vector<TetBinding> b = bind_to_tets(coarse, fine);
+  for (int v = 0; v < fine.num_vertices(); ++v) {
+    EXPECT_EQ(b[v].kind, BindingKind::inside) << "fine vertex " << v;
+    EXPECT_GT(b[v].weights.minCoeff(), -1e-9) << "fine vertex " << v;
+  }
+}

@@ -114,18 +114,16 @@ TEST(TetHierarchy, BallLevelsAreValidShrinkAndProlongAffineMapsExactly) {
 
 TEST(TetHierarchy, BoxLevelsKeepingInputPositionsAreTheSameBoxWithoutExtrapolation) {
   // Every decimated vertex keeps an input position, so S_l lies on the box's planes with its
-  // corners, Mesh_3 protects the sharp edges, and each level fills the box exactly. Weights
-  // should then lie in [0, 1], but Mesh_3's sliver perturbation leaves boundary vertices up to
-  // 1 ulp off the planes, and a level-1 vertex on the face y = −0.3 that is 1 ulp outside
-  // level 0 gets a ray binding with weight −0.218 (bind_to_tets on near-coplanar faces; open,
-  // see the report): the lower bound is that measurement, not the ideal −1e-9.
+  // corners, Mesh_3 protects the sharp edges, and each level fills the box exactly, so every
+  // weight lies in [0, 1] (Mesh_3's sliver perturbation leaves boundary vertices up to 1 ulp
+  // off the planes; bind_to_tets counts those as inside: it once gave one of them −0.218).
   const TetMesh finest = make_tet_box(Vec3(1.0, 0.6, 0.4), 10, 6, 4);
   TetHierarchyOptions options;
   options.coarse_boundary_vertex_counts = {120, 40};
   options.keep_input_positions = true;
   const TetHierarchy h = build_tet_hierarchy(finest, options);
   ASSERT_EQ(h.num_levels(), 3);
-  check_hierarchy_levels(h, 1e-9, -0.25, 1.0 + 1e-9);
+  check_hierarchy_levels(h, 1e-9, -1e-9, 1.0 + 1e-9);
   for (const TetMesh& level : h.levels) EXPECT_NEAR(tet_mesh_volume(level), 0.24, 0.24e-9);
 }
 
