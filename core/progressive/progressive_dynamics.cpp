@@ -33,10 +33,11 @@ LevelTransfer shell_transfer(const ShellProlongation& p) {
 ProgressiveDynamics::ProgressiveDynamics(Scene scene,
                                          std::shared_ptr<const MeshHierarchy> hierarchy,
                                          HierarchyProgress progress, void* user)
-    : scene_(dynamic_scene(std::move(scene))), hierarchy_(std::move(hierarchy)) {
-  if (!hierarchy_)
-    hierarchy_ =
-        std::make_shared<const MeshHierarchy>(build_scene_hierarchy(scene_, progress, user));
+    : scene_(dynamic_scene(std::move(scene))),
+      hierarchy_(hierarchy ? std::move(hierarchy)
+                           : std::make_shared<const MeshHierarchy>(
+                                 build_scene_hierarchy(scene_, progress, user))),
+      levels_(hierarchy_->finest()) {
   operators_ = std::make_unique<const LevelOperators>(hierarchy_);
   restart();
 }
@@ -52,36 +53,15 @@ std::unique_ptr<LevelSimulation> ProgressiveDynamics::make_level(int level) cons
 }
 
 void ProgressiveDynamics::restart() {
-  auto preview = make_level(0);
-  Trajectory frames(0, preview->model().rest.num_vertices());
-  frames.append(preview->dofs(), preview->velocities());
-  DynamicLevelRecord record = start_record(*preview);
-  preview_ = std::move(preview);
-  trajectories_.clear();
-  trajectories_.push_back(std::move(frames));
-  records_.assign(1, std::move(record));
-  masses_.assign(1, preview_->model().vertex_masses);
-}
-
-void ProgressiveDynamics::check_preview_open(const char* what) const {
-  if (level() > 0)
-    fail(Status::wrong_call_order,
-         std::string(what) + ": level " + std::to_string(level()) +
-             " has been refined from this preview; restart() before previewing again");
+  levels_.restart(make_level(0));
 }
 
 StepRecord ProgressiveDynamics::step_preview() {
-  check_preview_open("step_preview");
-  StepRecord step = preview_->step();
-  trajectories_[0].append(preview_->dofs(), preview_->velocities());
-  DynamicLevelRecord& record = records_[0];
-  add_dynamic_step(record, step, 0.0, 0.0);
-  record.terms = preview_->term_totals();
-  return step;
+  return levels_.step_preview();
 }
 
 void ProgressiveDynamics::update_scene(Scene scene) {
-  check_preview_open("update_scene");
+  levels_.check_preview_open("update_scene");
   validate_scene(scene);
   if (scene.mode != StepMode::dynamic)
     fail(Status::invalid_scene, "update_scene: progressive dynamics needs a dynamic scene");
@@ -92,66 +72,19 @@ void ProgressiveDynamics::update_scene(Scene scene) {
   if (!same_levels(scene.progressive, scene_.progressive))
     fail(Status::invalid_argument,
          "update_scene: the progressive levels define the hierarchy and cannot change");
-  preview_->update_scene(scene);
+  levels_.preview().update_scene(scene);
   scene_ = std::move(scene);
 }
 
 void ProgressiveDynamics::set_preview_velocities(const Vector& velocities) {
-  check_preview_open("set_preview_velocities");
-  if (preview_->steps_taken() > 0)
-    fail(Status::wrong_call_order,
-         "set_preview_velocities: the preview has taken steps; restart() to set its initial "
-         "velocities");
-  preview_->set_velocities(velocities);
-  Trajectory frames(0, trajectories_[0].num_vertices());
-  frames.append(preview_->dofs(), preview_->velocities());
-  trajectories_[0] = std::move(frames);
+  levels_.set_preview_velocities(velocities);
 }
 
 void ProgressiveDynamics::refine(const RefineProgress& progress) {
-  const int coarse = level(), fine = coarse + 1;
-  if (coarse >= finest())
-    fail(Status::out_of_range,
-         "level " + std::to_string(coarse) + " is the finest level; there is nothing to refine");
-  if (trajectories_[coarse].num_frames() < 2)
-    fail(Status::wrong_call_order, "refine: preview at least one step first");
-  std::unique_ptr<LevelSimulation> sim = make_level(fine);
-  Trajectory frames(fine, sim->model().rest.num_vertices());
-  DynamicLevelRecord record = start_record(*sim);
-  const CoarserLevel from{&trajectories_[coarse], &masses_[coarse], &records_[0], coarse};
-  animate_finer_level(*sim, from, shell_transfer(*operators_->next(coarse)), scene_.progressive,
-                      scene_.time_step, progress, frames, record);
-  masses_.push_back(sim->model().vertex_masses);
-  trajectories_.push_back(std::move(frames));
-  records_.push_back(std::move(record));
-}
-
-void ProgressiveDynamics::check_level(int level) const {
-  if (level < 0 || level > finest())
-    fail(Status::out_of_range, "level " + std::to_string(level) + " does not exist (levels 0 to " +
-                                   std::to_string(finest()) + ")");
-  if (level > this->level())
-    fail(Status::out_of_range,
-         "level " + std::to_string(level) + " has not been computed yet (refine() up to it first)");
-}
-
-int ProgressiveDynamics::num_frames(int level) const {
-  check_level(level);
-  return trajectories_[level].num_frames();
-}
-
-void ProgressiveDynamics::read_frame(int level, int frame, Positions& positions,
-                                     Positions& velocities) const {
-  check_level(level);
-  Vector x, v;
-  trajectories_[level].read(frame, x, v);
-  positions = as_positions(x);
-  velocities = as_positions(v);
-}
-
-const DynamicLevelRecord& ProgressiveDynamics::record(int level) const {
-  check_level(level);
-  return records_[level];
+  levels_.check_refinable();
+  const int coarse = level();
+  levels_.refine(make_level(coarse + 1), shell_transfer(*operators_->next(coarse)),
+                 scene_.progressive, scene_.time_step, progress);
 }
 
 }  // namespace progsim

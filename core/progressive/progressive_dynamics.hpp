@@ -9,6 +9,7 @@
 
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "hierarchy/shell_prolongation.hpp"
+#include "progressive/animated_levels.hpp"
 #include "progressive/dynamic_records.hpp"
 #include "progressive/level_operators.hpp"
 #include "progressive/progressive_animation.hpp"
@@ -60,21 +61,24 @@ class ProgressiveDynamics final : public ProgressiveAnimation {
   void set_preview_velocities(const Vector& velocities);
 
   /// The finest level computed so far (0: only the preview).
-  int level() const override { return static_cast<int>(trajectories_.size()) - 1; }
+  int level() const override { return levels_.level(); }
   int finest() const override { return hierarchy_->finest(); }
   const MeshHierarchy& hierarchy() const { return *hierarchy_; }
   std::shared_ptr<const MeshHierarchy> shared_hierarchy() const { return hierarchy_; }
   const Scene& scene() const override { return scene_; }
   /// Frames of level `level` (steps + 1: frame 0 is the initial state). Throws
   /// Error(out_of_range) for a level that does not exist or has not been computed.
-  int num_frames(int level) const override;
+  int num_frames(int level) const override { return levels_.num_frames(level); }
   /// Positions and velocities (|V_level| × 3) of frame `frame` of level `level`. Throws
   /// Error(out_of_range) for a level or frame not computed.
-  void read_frame(int level, int frame, Positions& positions, Positions& velocities) const override;
+  void read_frame(int level, int frame, Positions& positions,
+                  Positions& velocities) const override {
+    levels_.read_frame(level, frame, positions, velocities);
+  }
   /// What level `level` did, step by step. Throws Error(out_of_range) as num_frames().
-  const DynamicLevelRecord& record(int level) const override;
+  const DynamicLevelRecord& record(int level) const override { return levels_.record(level); }
   /// The preview's simulation (level 0, live).
-  const LevelSimulation& preview() const override { return *preview_; }
+  const LevelSimulation& preview() const override { return levels_.preview(); }
   /// The faces of hierarchy level `level`'s rest mesh.
   const Faces& surface_faces(int level) const override {
     return hierarchy_->levels.at(level).rest.faces;
@@ -85,18 +89,11 @@ class ProgressiveDynamics final : public ProgressiveAnimation {
   /// step to the tolerance, unlike PSQ's capped previews): the proxy energy below the finest
   /// level, the consistency penalty above the coarsest.
   std::unique_ptr<LevelSimulation> make_level(int level) const;
-  /// Throws Error(out_of_range) unless level `level` has been computed.
-  void check_level(int level) const;
-  /// Throws Error(wrong_call_order), naming `what`, once a finer level has been computed.
-  void check_preview_open(const char* what) const;
 
   Scene scene_;
   std::shared_ptr<const MeshHierarchy> hierarchy_;
   std::unique_ptr<const LevelOperators> operators_;
-  std::unique_ptr<LevelSimulation> preview_;
-  std::vector<Trajectory> trajectories_;     // per computed level
-  std::vector<DynamicLevelRecord> records_;  // per computed level
-  std::vector<Eigen::VectorXd> masses_;      // per computed level, for eq. 19
+  AnimatedLevels levels_;
 };
 
 }  // namespace progsim

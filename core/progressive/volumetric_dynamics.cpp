@@ -64,15 +64,13 @@ TetHierarchy build_scene_tet_hierarchy(const Scene& scene, HierarchyProgress pro
 }
 
 VolumetricDynamics::VolumetricDynamics(Scene scene, std::shared_ptr<const TetHierarchy> hierarchy)
-    : scene_(std::move(scene)), hierarchy_(std::move(hierarchy)) {
+    : scene_(std::move(scene)),
+      hierarchy_(std::move(hierarchy)),
+      levels_(hierarchy_ ? static_cast<int>(hierarchy_->levels.size()) - 1 : 0) {
   if (!hierarchy_) fail(Status::invalid_argument, "VolumetricDynamics: no tet hierarchy");
   check_volumetric_scene(scene_, *hierarchy_);
   for (const TetMesh& mesh : hierarchy_->levels) surface_faces_.push_back(tet_boundary_faces(mesh));
-  preview_ = make_level(0);
-  trajectories_.emplace_back(0, preview_->model().rest.num_vertices());
-  trajectories_[0].append(preview_->dofs(), preview_->velocities());
-  records_.push_back(start_record(*preview_));
-  masses_.push_back(preview_->model().vertex_masses);
+  restart();
 }
 
 VolumetricDynamics::~VolumetricDynamics() = default;
@@ -93,67 +91,11 @@ std::unique_ptr<LevelSimulation> VolumetricDynamics::make_level(int level) const
   return std::make_unique<LevelSimulation>(level_scene(level), std::move(own));
 }
 
-void VolumetricDynamics::set_preview_velocities(const Vector& velocities) {
-  if (trajectories_[0].num_frames() > 1)
-    fail(Status::wrong_call_order, "set_preview_velocities: the preview has already stepped");
-  preview_->set_velocities(velocities);
-  trajectories_[0] = Trajectory(0, preview_->model().rest.num_vertices());
-  trajectories_[0].append(preview_->dofs(), preview_->velocities());
-}
-
-StepRecord VolumetricDynamics::step_preview() {
-  if (level() > 0)
-    fail(Status::wrong_call_order,
-         "step_preview: level " + std::to_string(level()) + " has been refined from this preview");
-  StepRecord step = preview_->step();
-  trajectories_[0].append(preview_->dofs(), preview_->velocities());
-  add_dynamic_step(records_[0], step, 0.0, 0.0);
-  records_[0].terms = preview_->term_totals();
-  return step;
-}
-
 void VolumetricDynamics::refine(const RefineProgress& progress) {
-  const int coarse = level(), fine = coarse + 1;
-  if (coarse >= finest())
-    fail(Status::out_of_range,
-         "level " + std::to_string(coarse) + " is the finest level; there is nothing to refine");
-  if (trajectories_[coarse].num_frames() < 2)
-    fail(Status::wrong_call_order, "refine: preview at least one step first");
-  std::unique_ptr<LevelSimulation> sim = make_level(fine);
-  Trajectory frames(fine, sim->model().rest.num_vertices());
-  DynamicLevelRecord record = start_record(*sim);
-  const CoarserLevel from{&trajectories_[coarse], &masses_[coarse], &records_[0], coarse};
-  animate_finer_level(*sim, from, tet_transfer(hierarchy_->to_finer[coarse]), scene_.progressive,
-                      scene_.time_step, progress, frames, record);
-  masses_.push_back(sim->model().vertex_masses);
-  trajectories_.push_back(std::move(frames));
-  records_.push_back(std::move(record));
-}
-
-void VolumetricDynamics::check_level(int level) const {
-  if (level < 0 || level > this->level())
-    fail(Status::out_of_range, "level " + std::to_string(level) +
-                                   " has not been computed (levels 0 to " +
-                                   std::to_string(this->level()) + " have)");
-}
-
-int VolumetricDynamics::num_frames(int level) const {
-  check_level(level);
-  return trajectories_[level].num_frames();
-}
-
-void VolumetricDynamics::read_frame(int level, int frame, Positions& positions,
-                                    Positions& velocities) const {
-  check_level(level);
-  Vector x, v;
-  trajectories_[level].read(frame, x, v);
-  positions = as_positions(x);
-  velocities = as_positions(v);
-}
-
-const DynamicLevelRecord& VolumetricDynamics::record(int level) const {
-  check_level(level);
-  return records_[level];
+  levels_.check_refinable();
+  const int coarse = level();
+  levels_.refine(make_level(coarse + 1), tet_transfer(hierarchy_->to_finer[coarse]),
+                 scene_.progressive, scene_.time_step, progress);
 }
 
 }  // namespace progsim

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hierarchy/tet_hierarchy.hpp"
+#include "progressive/animated_levels.hpp"
 #include "progressive/dynamic_records.hpp"
 #include "progressive/progressive_animation.hpp"
 #include "progressive/trajectory.hpp"
@@ -31,10 +32,14 @@ class VolumetricDynamics final : public ProgressiveAnimation {
 
   /// Sets the preview's velocities (3|V_0|, m/s) before its first step. Throws
   /// Error(wrong_call_order) after it, Error(invalid_argument) on a wrong size or non-finite entry.
-  void set_preview_velocities(const Vector& velocities);
-  /// One preview step on level 0. Throws Error(wrong_call_order) once a finer level exists.
-  const char* method() const override { return "volumetric progressive dynamics"; }
-  StepRecord step_preview() override;
+  void set_preview_velocities(const Vector& velocities) {
+    levels_.set_preview_velocities(velocities);
+  }
+  /// Discards every level's frames and starts the preview again from the initial state.
+  void restart() { levels_.restart(make_level(0)); }
+  /// One preview step on level 0. Throws Error(wrong_call_order) once a finer level exists
+  /// (restart() first).
+  StepRecord step_preview() override { return levels_.step_preview(); }
   /// Animates level level() + 1 over every previewed step (VPD eq. 2 with
   /// scene.progressive.prediction; the penalty with scene.progressive.consistency_weight > 0),
   /// from its rest shape with the prolonged initial velocities. Throws Error(out_of_range) at the
@@ -42,35 +47,35 @@ class VolumetricDynamics final : public ProgressiveAnimation {
   /// `progress` says stop; on Error nothing changed.
   void refine(const RefineProgress& progress = nullptr) override;
 
+  const char* method() const override { return "volumetric progressive dynamics"; }
   /// The finest level computed so far (0: only the preview).
-  int level() const override { return static_cast<int>(trajectories_.size()) - 1; }
+  int level() const override { return levels_.level(); }
   int finest() const override { return static_cast<int>(hierarchy_->levels.size()) - 1; }
   const TetHierarchy& hierarchy() const { return *hierarchy_; }
   const Scene& scene() const override { return scene_; }
-  /// The boundary faces of tet level `level`.
-  const Faces& surface_faces(int level) const override { return surface_faces_.at(level); }
   /// The scene of level `level`: the scene with its body's mesh and tets replaced by the level's.
   Scene level_scene(int level) const;
+  /// The boundary faces of tet level `level`.
+  const Faces& surface_faces(int level) const override { return surface_faces_.at(level); }
   /// Frames of a computed level (steps + 1). Throws Error(out_of_range) otherwise.
-  int num_frames(int level) const override;
+  int num_frames(int level) const override { return levels_.num_frames(level); }
   /// Positions and velocities (|V_level| × 3) of a frame. Throws Error(out_of_range).
-  void read_frame(int level, int frame, Positions& positions, Positions& velocities) const override;
+  void read_frame(int level, int frame, Positions& positions,
+                  Positions& velocities) const override {
+    levels_.read_frame(level, frame, positions, velocities);
+  }
   /// What a computed level did, step by step. Throws Error(out_of_range).
-  const DynamicLevelRecord& record(int level) const override;
+  const DynamicLevelRecord& record(int level) const override { return levels_.record(level); }
   /// The preview's simulation (level 0, live).
-  const LevelSimulation& preview() const override { return *preview_; }
+  const LevelSimulation& preview() const override { return levels_.preview(); }
 
  private:
   std::unique_ptr<LevelSimulation> make_level(int level) const;
-  void check_level(int level) const;
 
   Scene scene_;
   std::shared_ptr<const TetHierarchy> hierarchy_;
-  std::unique_ptr<LevelSimulation> preview_;
-  std::vector<Trajectory> trajectories_;
-  std::vector<DynamicLevelRecord> records_;
-  std::vector<Eigen::VectorXd> masses_;
   std::vector<Faces> surface_faces_;  // per level, tet_boundary_faces
+  AnimatedLevels levels_;
 };
 
 /// The tet hierarchy of a scene's one volumetric body (build_tet_hierarchy): coarse boundary

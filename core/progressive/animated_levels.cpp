@@ -1,0 +1,99 @@
+#include "progressive/animated_levels.hpp"
+
+#include <string>
+
+#include "common/error.hpp"
+
+namespace progsim {
+
+void AnimatedLevels::restart(std::unique_ptr<LevelSimulation> preview) {
+  Trajectory frames(0, preview->model().rest.num_vertices());
+  frames.append(preview->dofs(), preview->velocities());
+  DynamicLevelRecord record = start_record(*preview);
+  preview_ = std::move(preview);
+  trajectories_.clear();
+  trajectories_.push_back(std::move(frames));
+  records_.assign(1, std::move(record));
+  masses_.assign(1, preview_->model().vertex_masses);
+}
+
+void AnimatedLevels::check_preview_open(const char* what) const {
+  if (level() > 0)
+    fail(Status::wrong_call_order,
+         std::string(what) + ": level " + std::to_string(level()) +
+             " has been refined from this preview; restart() before previewing again");
+}
+
+void AnimatedLevels::set_preview_velocities(const Vector& velocities) {
+  check_preview_open("set_preview_velocities");
+  if (preview_->steps_taken() > 0)
+    fail(Status::wrong_call_order,
+         "set_preview_velocities: the preview has taken steps; restart() to set its initial "
+         "velocities");
+  preview_->set_velocities(velocities);
+  Trajectory frames(0, trajectories_[0].num_vertices());
+  frames.append(preview_->dofs(), preview_->velocities());
+  trajectories_[0] = std::move(frames);
+}
+
+StepRecord AnimatedLevels::step_preview() {
+  check_preview_open("step_preview");
+  StepRecord step = preview_->step();
+  trajectories_[0].append(preview_->dofs(), preview_->velocities());
+  DynamicLevelRecord& record = records_[0];
+  add_dynamic_step(record, step, 0.0, 0.0);
+  record.terms = preview_->term_totals();
+  return step;
+}
+
+void AnimatedLevels::check_refinable() const {
+  if (level() >= finest_)
+    fail(Status::out_of_range,
+         "level " + std::to_string(level()) + " is the finest level; there is nothing to refine");
+  if (trajectories_[level()].num_frames() < 2)
+    fail(Status::wrong_call_order, "refine: preview at least one step first");
+}
+
+void AnimatedLevels::refine(std::unique_ptr<LevelSimulation> sim, const LevelTransfer& transfer,
+                            const ProgressiveSettings& settings, double time_step,
+                            const RefineProgress& progress) {
+  check_refinable();
+  const int coarse = level();
+  Trajectory frames(coarse + 1, sim->model().rest.num_vertices());
+  DynamicLevelRecord record = start_record(*sim);
+  const CoarserLevel from{&trajectories_[coarse], &masses_[coarse], &records_[0], coarse};
+  animate_finer_level(*sim, from, transfer, settings, time_step, progress, frames, record);
+  masses_.push_back(sim->model().vertex_masses);
+  trajectories_.push_back(std::move(frames));
+  records_.push_back(std::move(record));
+}
+
+void AnimatedLevels::check_level(int level) const {
+  if (level < 0 || level > finest_)
+    fail(Status::out_of_range, "level " + std::to_string(level) + " does not exist (levels 0 to " +
+                                   std::to_string(finest_) + ")");
+  if (level > this->level())
+    fail(Status::out_of_range,
+         "level " + std::to_string(level) + " has not been computed yet (refine() up to it first)");
+}
+
+int AnimatedLevels::num_frames(int level) const {
+  check_level(level);
+  return trajectories_[level].num_frames();
+}
+
+void AnimatedLevels::read_frame(int level, int frame, Positions& positions,
+                                Positions& velocities) const {
+  check_level(level);
+  Vector x, v;
+  trajectories_[level].read(frame, x, v);
+  positions = as_positions(x);
+  velocities = as_positions(v);
+}
+
+const DynamicLevelRecord& AnimatedLevels::record(int level) const {
+  check_level(level);
+  return records_[level];
+}
+
+}  // namespace progsim
