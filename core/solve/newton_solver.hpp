@@ -64,7 +64,9 @@ struct NewtonSettings {
 
 /// Why a Newton solve stopped.
 enum class NewtonStop {
-  converged,             ///< the decrement fell below the tolerance
+  /// the decrement fell below the tolerance, or a refused step predicted a decrease the
+  /// energy's rounding cannot resolve (under 16 ulps of |E|)
+  converged,
   max_iterations,        ///< the iteration cap was reached first
   line_search_failed,    ///< no step length decreased the energy
   non_finite,            ///< the energy, gradient, step or its CCD bound became NaN/Inf
