@@ -27,4 +27,11 @@ inline Eigen::Map<const Positions> as_positions(const Vector& x) {
   return Eigen::Map<const Positions>(x.data(), x.size() / 3, 3);
 }
 
+/// True when two arrays have the same shape and entries. Eigen's == asserts on a shape
+/// mismatch (and reads out of bounds under NDEBUG), so compare shapes first.
+template <class A, class B>
+bool same_array(const Eigen::DenseBase<A>& a, const Eigen::DenseBase<B>& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() && (a.derived() == b.derived());
+}
+
 }  // namespace progsim

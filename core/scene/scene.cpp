@@ -67,7 +67,7 @@ void validate_body_geometry(const Body& body) {
   if (!is_solid(body)) return validate_mesh(body.mesh, body.name);
   const TetMesh volume{body.mesh.vertices, body.tets};
   validate_tet_mesh(volume, body.name);
-  if (body.mesh.faces != tet_boundary_faces(volume))
+  if (!same_array(body.mesh.faces, tet_boundary_faces(volume)))
     fail(Status::invalid_mesh, body.name +
                                    ": the faces of a solid body must be its tets' "
                                    "boundary (tet_boundary_faces)");

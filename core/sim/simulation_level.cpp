@@ -53,8 +53,7 @@ ShellModel level_shell_model(const ShellModel& finest, const MeshHierarchy& hier
 void check_hierarchy_matches(const MeshHierarchy& hierarchy, const TriangleMesh& finest,
                              const std::vector<int>& vertex_handle) {
   const TriangleMesh& mesh = hierarchy.levels.back().rest;
-  if (mesh.vertices.rows() != finest.vertices.rows() || mesh.faces.rows() != finest.faces.rows() ||
-      mesh.vertices != finest.vertices || mesh.faces != finest.faces)
+  if (!same_array(mesh.vertices, finest.vertices) || !same_array(mesh.faces, finest.faces))
     fail(Status::invalid_argument,
          "the hierarchy's finest level (" + std::to_string(mesh.num_vertices()) + " vertices, " +
              std::to_string(mesh.num_faces()) + " faces) is not the scene's mesh (" +
