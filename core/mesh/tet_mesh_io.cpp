@@ -47,6 +47,11 @@ void put_tets(std::ostream& out, const Tets& tets, const char* prefix, int base,
 
 }  // namespace
 
+bool is_tet_mesh_path(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".mesh" || ext == ".msh" || ext == ".node" || ext == ".ele";
+}
+
 TetMesh read_tet_mesh(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext == ".mesh") return read_medit(path);

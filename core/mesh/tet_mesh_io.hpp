@@ -7,6 +7,10 @@
 
 namespace progsim {
 
+/// Whether `path` names a tet mesh file read_tet_mesh() reads (.mesh, .msh, .node, .ele, any
+/// letter case), as opposed to a triangle surface.
+bool is_tet_mesh_path(const std::string& path);
+
 /// Reads a tet mesh, the format chosen by the extension of `path` (any letter case): .mesh
 /// (read_medit), .msh (read_gmsh), .node or .ele (read_tetgen on the pair of files that share
 /// the stem). The result is not validated: call validate_tet_mesh().

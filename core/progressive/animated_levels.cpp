@@ -3,6 +3,7 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "progressive/progressive_simulation.hpp"
 
 namespace progsim {
 
@@ -22,6 +23,22 @@ void AnimatedLevels::check_preview_open(const char* what) const {
     fail(Status::wrong_call_order,
          std::string(what) + ": level " + std::to_string(level()) +
              " has been refined from this preview; restart() before previewing again");
+}
+
+void AnimatedLevels::update_preview_scene(const Scene& current, const Scene& updated,
+                                          const Scene& preview_scene) {
+  check_preview_open("update_scene");
+  validate_scene(updated);
+  if (updated.mode != StepMode::dynamic)
+    fail(Status::invalid_scene, "update_scene: a progressive animation needs a dynamic scene");
+  if (updated.time_step != current.time_step)
+    fail(Status::invalid_argument,
+         "update_scene: the time step cannot change within an animation (restart with a new "
+         "driver)");
+  if (!same_levels(updated.progressive, current.progressive))
+    fail(Status::invalid_argument,
+         "update_scene: the progressive levels define the hierarchy and cannot change");
+  preview_->update_scene(preview_scene);
 }
 
 void AnimatedLevels::set_preview_velocities(const Vector& velocities) {

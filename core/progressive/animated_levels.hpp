@@ -22,6 +22,12 @@ class AnimatedLevels {
   /// Sets the preview's initial velocities (3|V_0|, m/s). Throws Error(wrong_call_order) once a
   /// finer level exists or the preview has stepped, as LevelSimulation::set_velocities otherwise.
   void set_preview_velocities(const Vector& velocities);
+  /// Gives the preview `preview_scene` (the level-0 form of `updated`) once `updated` may
+  /// replace `current` mid-animation. Throws Error(wrong_call_order) once a finer level exists,
+  /// Error(invalid_scene) for a quasistatic scene, Error(invalid_argument) for a new time step
+  /// or new progressive levels (they fix the animation), and as validate_scene(); on Error
+  /// nothing changed.
+  void update_preview_scene(const Scene& current, const Scene& updated, const Scene& preview_scene);
   /// One preview step, recorded. Throws Error(wrong_call_order) once a finer level exists.
   StepRecord step_preview();
   /// Animates `sim` (level level() + 1 at its initial state) over the previewed steps through

@@ -12,7 +12,14 @@ ConsistencyProjection::ConsistencyProjection(const ProlongationMatrix& intrinsic
     : coarse_masses_(std::move(coarse_masses)) {
   const Eigen::SparseMatrix<double> u = intrinsic;
   weighted_transpose_ = u.transpose() * fine_masses.asDiagonal();
-  const Eigen::SparseMatrix<double> normal = weighted_transpose_ * u;
+  Eigen::SparseMatrix<double> normal = weighted_transpose_ * u;
+  // A coarse vertex no fine vertex depends on (a zero column of U: a coarse tet vertex whose
+  // tets hold no fine vertex) says nothing about the fine state: identity row, zero weight.
+  for (Eigen::Index i = 0; i < normal.rows(); ++i)
+    if (!(normal.coeff(i, i) > 0.0)) {
+      normal.coeffRef(i, i) = 1.0;
+      coarse_masses_[i] = 0.0;
+    }
   normal_.compute(normal);
   if (normal_.info() != Eigen::Success)
     fail(Status::numerical_failure, "consistency projection: UᵀMU is singular");

@@ -11,7 +11,8 @@ namespace progsim {
 /// Π = (UᵀMU)⁻¹UᵀM, the mass-weighted least-squares projection of a fine state onto the coarse
 /// level through the intrinsic part U of the prolongation (the projection VPD App. C builds from
 /// U; its formula was lost from our copy, so the choice is ours), and the distance of the result
-/// from a coarse state. UᵀMU is factorized once.
+/// from a coarse state. UᵀMU is factorized once. Coarse vertices no fine vertex depends on (zero
+/// columns of U, as a coarse tet level can have) are left out of the projection and the norm.
 class ConsistencyProjection {
  public:
   /// `intrinsic` U (n_fine × n_coarse), `fine_masses` M (n_fine), `coarse_masses` (n_coarse) for

@@ -16,6 +16,15 @@ class ProgressiveAnimation {
   /// The method's name for summaries ("progressive dynamics", ...).
   virtual const char* method() const = 0;
 
+  /// Discards every level's frames and starts the preview again from the initial state.
+  virtual void restart() = 0;
+  /// Replaces the scene (materials, effects, solver, prediction, penalty) for the preview from
+  /// its current time on; meshes, levels and time step must stay. Error(wrong_call_order) once
+  /// a finer level exists (restart() first); on Error nothing changed.
+  virtual void update_scene(Scene scene) = 0;
+  /// Sets the preview's velocities (3|V_0|, m/s) before its first step. Error(wrong_call_order)
+  /// after it, Error(invalid_argument) on a wrong size or non-finite entry.
+  virtual void set_preview_velocities(const Vector& velocities) = 0;
   /// One preview step on level 0 (Error(wrong_call_order) once a finer level exists).
   virtual StepRecord step_preview() = 0;
   /// Animates level level() + 1 over every previewed step (Error(out_of_range) at the finest,

@@ -61,18 +61,7 @@ StepRecord ProgressiveDynamics::step_preview() {
 }
 
 void ProgressiveDynamics::update_scene(Scene scene) {
-  levels_.check_preview_open("update_scene");
-  validate_scene(scene);
-  if (scene.mode != StepMode::dynamic)
-    fail(Status::invalid_scene, "update_scene: progressive dynamics needs a dynamic scene");
-  if (scene.time_step != scene_.time_step)
-    fail(Status::invalid_argument,
-         "update_scene: the time step cannot change within an animation (restart with a new "
-         "ProgressiveDynamics)");
-  if (!same_levels(scene.progressive, scene_.progressive))
-    fail(Status::invalid_argument,
-         "update_scene: the progressive levels define the hierarchy and cannot change");
-  levels_.preview().update_scene(scene);
+  levels_.update_preview_scene(scene_, scene, scene);
   scene_ = std::move(scene);
 }
 

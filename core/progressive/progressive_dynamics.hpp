@@ -49,16 +49,16 @@ class ProgressiveDynamics final : public ProgressiveAnimation {
   void refine(const RefineProgress& progress = nullptr) override;
   /// Discards every level's frames and starts the preview again from the initial state (after
   /// update_scene(), to preview a variation).
-  void restart();
+  void restart() override;
   /// Replaces the scene (materials, loads, effects, solver, prediction, penalty) for the
   /// preview from its current time on; the meshes, handles' vertex sets, levels and time step
   /// must stay. Throws Error(wrong_call_order) once a finer level has been computed (restart()
   /// first), Error(invalid_argument / invalid_scene) on a bad scene; on Error nothing changed.
-  void update_scene(Scene scene);
+  void update_scene(Scene scene) override;
   /// Sets the preview's velocities (3|V_0|, m/s) before its first step. Throws
   /// Error(wrong_call_order) after it, Error(invalid_argument) on a wrong size or non-finite
   /// entry.
-  void set_preview_velocities(const Vector& velocities);
+  void set_preview_velocities(const Vector& velocities) override;
 
   /// The finest level computed so far (0: only the preview).
   int level() const override { return levels_.level(); }

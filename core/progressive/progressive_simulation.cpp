@@ -6,6 +6,8 @@
 
 #include "common/error.hpp"
 #include "common/timer.hpp"
+#include "hierarchy/decimation.hpp"
+#include "progressive/scene_level_counts.hpp"
 #include "sim/contact_setup.hpp"
 #include "sim/handle_targets.hpp"
 #include "sim/obstacle_script.hpp"
@@ -30,25 +32,23 @@ void check_quasistatic_levels(const Scene& scene, int num_levels, const std::str
              "created in dynamic mode)");
 }
 
-/// Coarse level sizes the settings ask for (coarsest first); empty for a direct simulation.
-std::vector<int> coarse_counts(const ProgressiveSettings& p, int finest_vertices) {
-  if (!p.level_vertices.empty()) return p.level_vertices;
-  if (p.coarse_levels == 0) return {};
-  return geometric_level_counts(finest_vertices, p.coarsening_ratio, p.coarse_levels);
-}
-
 /// build_scene_hierarchy() of a scene that passed check_progressive_scene().
 MeshHierarchy checked_scene_hierarchy(const Scene& scene, HierarchyProgress progress, void* user) {
-  if (std::any_of(scene.bodies.begin(), scene.bodies.end(), is_solid))
-    fail(Status::unsupported,
-         scene.name +
-             ": volumetric (tet) bodies are simulated directly only so far (LevelSimulation, "
-             "`progsim run --direct`); their hierarchies and progressive animation (VPD) are not "
-             "built yet");
   const ShellModel model = build_shell_model(scene);
   HierarchyOptions options;
-  options.coarse_vertex_counts = coarse_counts(scene.progressive, model.rest.num_vertices());
+  options.coarse_vertex_counts = scene_coarse_counts(scene.progressive, model.rest.num_vertices());
   options.vertex_groups = vertex_handles(scene, model);
+  if (std::any_of(scene.bodies.begin(), scene.bodies.end(), is_solid)) {
+    if (!options.coarse_vertex_counts.empty())
+      fail(Status::unsupported,
+           scene.name +
+               ": volumetric (tet) bodies on several levels are animated by VPD "
+               "(VolumetricDynamics, dynamic mode); PSQ refines shells only, and simulates a "
+               "solid on one level (no coarse levels) directly");
+    // One level, validated as tets by validate_scene: build_hierarchy's surface check would
+    // refuse the solid's interior vertices, which no boundary face references.
+    return decimate(model.rest, options, progress, user);
+  }
   if (scene.effects.has(Effect::contact)) options.contact_offsets = shell_contact_offsets(model);
   return build_hierarchy(model.rest, options, progress, user);
 }

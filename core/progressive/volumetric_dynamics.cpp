@@ -5,6 +5,7 @@
 #include "common/error.hpp"
 #include "mesh/tet_boundary.hpp"
 #include "progressive/level_refinement.hpp"
+#include "progressive/scene_level_counts.hpp"
 
 namespace progsim {
 namespace {
@@ -30,7 +31,7 @@ void check_volumetric_scene(const Scene& scene, const TetHierarchy& hierarchy) {
                                        "one prolongation between each pair");
   const TetMesh& finest = hierarchy.levels.back();
   const Body& body = scene.bodies[0];
-  if (finest.tets != body.tets || finest.vertices != body.mesh.vertices)
+  if (!same_array(finest.tets, body.tets) || !same_array(finest.vertices, body.mesh.vertices))
     fail(Status::invalid_argument,
          scene.name + ": the hierarchy's finest level is not the body's mesh");
 }
@@ -54,12 +55,8 @@ TetHierarchy build_scene_tet_hierarchy(const Scene& scene, HierarchyProgress pro
   const Body& body = scene.bodies[0];
   const TetMesh finest{body.mesh.vertices, body.tets};
   const int boundary_vertices = static_cast<int>(extract_tet_boundary(finest).volume_vertex.size());
-  const ProgressiveSettings& p = scene.progressive;
   TetHierarchyOptions options;
-  options.coarse_boundary_vertex_counts =
-      !p.level_vertices.empty()
-          ? p.level_vertices
-          : geometric_level_counts(boundary_vertices, p.coarsening_ratio, p.coarse_levels);
+  options.coarse_boundary_vertex_counts = scene_coarse_counts(scene.progressive, boundary_vertices);
   return build_tet_hierarchy(finest, options, progress, user);
 }
 
@@ -75,8 +72,14 @@ VolumetricDynamics::VolumetricDynamics(Scene scene, std::shared_ptr<const TetHie
 
 VolumetricDynamics::~VolumetricDynamics() = default;
 
-Scene VolumetricDynamics::level_scene(int level) const {
-  Scene s = scene_;
+void VolumetricDynamics::update_scene(Scene scene) {
+  check_volumetric_scene(scene, *hierarchy_);
+  levels_.update_preview_scene(scene_, scene, level_scene(scene, 0));
+  scene_ = std::move(scene);
+}
+
+Scene VolumetricDynamics::level_scene(const Scene& scene, int level) const {
+  Scene s = scene;
   const TetMesh& mesh = hierarchy_->levels.at(level);
   Body& body = s.bodies[0];
   body.mesh.vertices = mesh.vertices;

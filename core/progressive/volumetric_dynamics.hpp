@@ -32,11 +32,14 @@ class VolumetricDynamics final : public ProgressiveAnimation {
 
   /// Sets the preview's velocities (3|V_0|, m/s) before its first step. Throws
   /// Error(wrong_call_order) after it, Error(invalid_argument) on a wrong size or non-finite entry.
-  void set_preview_velocities(const Vector& velocities) {
+  void set_preview_velocities(const Vector& velocities) override {
     levels_.set_preview_velocities(velocities);
   }
   /// Discards every level's frames and starts the preview again from the initial state.
-  void restart() { levels_.restart(make_level(0)); }
+  void restart() override { levels_.restart(make_level(0)); }
+  /// Replaces the scene for the preview from its current time on (ProgressiveAnimation); the
+  /// body's mesh must stay the hierarchy's finest level. Also throws as the constructor does.
+  void update_scene(Scene scene) override;
   /// One preview step on level 0. Throws Error(wrong_call_order) once a finer level exists
   /// (restart() first).
   StepRecord step_preview() override { return levels_.step_preview(); }
@@ -52,9 +55,10 @@ class VolumetricDynamics final : public ProgressiveAnimation {
   int level() const override { return levels_.level(); }
   int finest() const override { return static_cast<int>(hierarchy_->levels.size()) - 1; }
   const TetHierarchy& hierarchy() const { return *hierarchy_; }
+  std::shared_ptr<const TetHierarchy> shared_hierarchy() const { return hierarchy_; }
   const Scene& scene() const override { return scene_; }
   /// The scene of level `level`: the scene with its body's mesh and tets replaced by the level's.
-  Scene level_scene(int level) const;
+  Scene level_scene(int level) const { return level_scene(scene_, level); }
   /// The boundary faces of tet level `level`.
   const Faces& surface_faces(int level) const override { return surface_faces_.at(level); }
   /// Frames of a computed level (steps + 1). Throws Error(out_of_range) otherwise.
@@ -70,6 +74,8 @@ class VolumetricDynamics final : public ProgressiveAnimation {
   const LevelSimulation& preview() const override { return levels_.preview(); }
 
  private:
+  /// `scene` with its body's mesh and tets replaced by level `level`'s.
+  Scene level_scene(const Scene& scene, int level) const;
   std::unique_ptr<LevelSimulation> make_level(int level) const;
 
   Scene scene_;
@@ -80,8 +86,8 @@ class VolumetricDynamics final : public ProgressiveAnimation {
 
 /// The tet hierarchy of a scene's one volumetric body (build_tet_hierarchy): coarse boundary
 /// vertex counts from scene.progressive (level_vertices, or coarse_levels coarsened by
-/// coarsening_ratio from the body's boundary vertex count). Throws as check and
-/// build_tet_hierarchy do; Error(unsupported) as VolumetricDynamics.
+/// coarsening_ratio from the body's boundary vertex count; neither: the single finest level).
+/// Throws as build_tet_hierarchy does; Error(unsupported) unless the scene has one solid body.
 TetHierarchy build_scene_tet_hierarchy(const Scene& scene, HierarchyProgress progress = nullptr,
                                        void* user = nullptr);
 

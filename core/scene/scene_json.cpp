@@ -165,11 +165,6 @@ BodyGeometry solid_geometry(TetMesh volume, const std::string& label) {
   return g;
 }
 
-bool is_tet_mesh_file(const std::filesystem::path& path) {
-  const std::string ext = path.extension().string();
-  return ext == ".mesh" || ext == ".msh" || ext == ".node" || ext == ".ele";
-}
-
 /// {"generator": "tet_box", "size": [x, y, z], "cells": [nx, ny, nz]}: make_tet_box.
 TetMesh generated_tets(const Json& j, const std::string& where) {
   expect_keys(j, where, {"generator", "size", "cells"});
@@ -194,7 +189,7 @@ BodyGeometry body_geometry(const Json& j, const std::string& where, const std::s
   if (j.contains("file") && j.at("file").is_string()) {
     std::filesystem::path path = j.at("file").get<std::string>();
     if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
-    if (is_tet_mesh_file(path)) {
+    if (is_tet_mesh_path(path.string())) {
       expect_keys(j, where, {"file"});
       return solid_geometry(read_tet_mesh(path.string()), path.string());
     }

@@ -14,6 +14,7 @@
 #include "energy/positive_volume_step.hpp"
 #include "energy/tet_elastics.hpp"
 #include "energy/tet_lumped_mass.hpp"
+#include "mesh/tet_generators.hpp"
 #include "problem/problem.hpp"
 #include "solve/newton_solver.hpp"
 #include "support/energy_checks.hpp"
@@ -290,6 +291,40 @@ TEST(PositiveVolumeStep, FindsTheFirstRootOfTheVolumeCubic) {
   EXPECT_EQ(a, 1.0);
   EXPECT_EQ(positive_volume_step(-id, id), 0.0);  // already inverted
   EXPECT_TRUE(std::isnan(positive_volume_step(id, Mat3::Constant(NAN))));
+}
+
+TEST(TetElastics, PassTheLinearPatchTest) {
+  // An affine deformation x = A X + b of any tet mesh gives every tet the same F = A, hence the
+  // same stress, and the element forces cancel at every interior vertex (the patch test of
+  // Irons; Zienkiewicz and Taylor, The Finite Element Method, vol. 1, §9.2).
+  const TetMesh box = make_tet_box(Vec3(1.0, 0.8, 0.6), 3, 3, 3);
+  Mat3 a;
+  a << 1.2, 0.1, -0.05, 0.03, 0.9, 0.2, -0.1, 0.05, 1.1;
+  const Positions deformed =
+      (box.vertices * a.transpose()).rowwise() + Vec3(0.3, -1, 2).transpose();
+  const Vector x = as_dofs(deformed);
+  const Vec3 lo = box.vertices.colwise().minCoeff(), hi = box.vertices.colwise().maxCoeff();
+  for (SolidModel model : kModels) {
+    SCOPED_TRACE(model_name(model));
+    const TetElastics term(box.vertices, box.tets, materials(model, box.num_tets()));
+    for (int t = 0; t < box.num_tets(); ++t)
+      ASSERT_LT((term.deformation_gradient(t, x) - a).norm(), 1e-12) << "tet " << t;
+    Vector g = Vector::Zero(x.size());
+    term.add_gradient(x, g);
+    const double scale = g.cwiseAbs().maxCoeff();
+    ASSERT_GT(scale, 1e2);  // the deformation is far from rest: boundary forces are large
+    int interior = 0;
+    for (int v = 0; v < box.num_vertices(); ++v) {
+      const Vec3 p = box.vertices.row(v);
+      if (((p - lo).array() <= 1e-12).any() || ((hi - p).array() <= 1e-12).any()) continue;
+      ++interior;
+      EXPECT_LT(g.segment<3>(3 * v).norm(), 1e-12 * scale) << "interior vertex " << v;
+    }
+    EXPECT_EQ(interior, 8);
+    Vec3 net = Vec3::Zero();
+    for (int v = 0; v < box.num_vertices(); ++v) net += g.segment<3>(3 * v);
+    EXPECT_LT(net.norm(), 1e-12 * scale);  // translation invariance: the forces balance
+  }
 }
 
 TEST(TetElastics, RejectsBadInputNamingTheProblem) {

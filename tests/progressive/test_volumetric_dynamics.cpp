@@ -10,6 +10,7 @@
 
 #include "common/error.hpp"
 #include "hierarchy/tet_prolongation.hpp"
+#include "mesh/intersection_check.hpp"
 #include "mesh/tet_boundary.hpp"
 #include "mesh/tet_generators.hpp"
 #include "progressive/volumetric_dynamics.hpp"
@@ -124,6 +125,9 @@ TEST(VolumetricDynamics, EveryLevelLandsAsThePreviewDidAboveTheGroundWithTetsPos
       vpd.read_frame(level, frame, x, v);
       ASSERT_GT(x.col(1).minCoeff(), 0.0) << "level " << level << " frame " << frame;
       ASSERT_GT(min_tet_determinant(levels->levels[level], x), 0.0);
+      // the boundary by CGAL's exact predicates: no two faces intersect
+      ASSERT_TRUE(intersecting_faces(x, vpd.surface_faces(level), 1).empty())
+          << "level " << level << " frame " << frame;
     }
   const double preview_drop =
       vpd.record(0).start_center_of_mass.y() - vpd.record(0).steps.back().motion.center_of_mass.y();

@@ -122,6 +122,34 @@ TEST(SolidBodies, CantileverConvergesToTimoshenkosDeflection) {
   EXPECT_NEAR(extrapolated, expected, 0.02 * expected);
 }
 
+TEST(SolidBodies, AHangingBarStretchesByRhoGLSquaredOverTwoE) {
+  // A bar of length L hanging from its top face under its own weight carries σ(s) = ρ g s at
+  // height s above its free end; with ν = 0 its elongation is ∫σ/E = ρ g L²/(2E) (Timoshenko
+  // and Goodier, Theory of Elasticity, §101). E is high enough for the strain to stay ~1e-5.
+  const double length = 1.0, e = 1e9, rho = 1000.0;
+  Body bar =
+      solid_box(Vec3(0.1, length, 0.1), 2, 20, 2, Vec3::Zero(), e, 0.0, SolidModel::neo_hookean);
+  Scene s = solid_scene(bar, StepMode::quasistatic, 1.0, 1.0);
+  s.solver.tolerance = 1e-10;
+  const double top = bar.mesh.vertices.col(1).maxCoeff(),
+               bottom = bar.mesh.vertices.col(1).minCoeff();
+  Handle clamp;
+  for (int v = 0; v < bar.mesh.num_vertices(); ++v)
+    if (bar.mesh.vertices(v, 1) == top) clamp.vertices.push_back(v);
+  s.handles.push_back(clamp);
+  LevelSimulation sim(s);
+  EXPECT_EQ(sim.step().newton.stop, NewtonStop::converged);
+  double drop = 0.0;
+  int count = 0;
+  for (int v = 0; v < bar.mesh.num_vertices(); ++v)
+    if (bar.mesh.vertices(v, 1) == bottom) {
+      drop += bottom - sim.positions()(v, 1);
+      ++count;
+    }
+  const double expected = rho * kG * length * length / (2.0 * e);
+  EXPECT_NEAR(drop / count, expected, 0.01 * expected);
+}
+
 TEST(SolidBodies, TumbleOnTheGroundAboveItWithEveryTetPositive) {
   Body body =
       solid_box(Vec3(0.2, 0.2, 0.2), 3, 3, 3, Vec3::Zero(), 1e5, 0.4, SolidModel::neo_hookean);
