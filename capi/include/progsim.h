@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 15
+#define PS_VERSION_MINOR 16
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -145,6 +145,14 @@ typedef struct ps_hierarchy_def {
    *  a face, or two edges, that share no vertex within 2ξ (what contact checks at a level's
    *  start). Scenes (ps_sim_create_from_scene*) set it from their thickness themselves. */
   double contact_offset;
+  /** Solids (ps_hierarchy_create_solid*): each coarse level is tetrahedralized with tets and
+   *  boundary faces about this many times its surface's mean edge length (m/m), in (0, 100];
+   *  default 0.6 (tets about as long as the surface's edges). Shells ignore it. */
+  double tet_size_factor;
+  /** Solids from a closed surface (ps_hierarchy_create_solid_from_surface, or a surface file):
+   *  the largest tet circumradius of the finest level, m; 0 (default): the surface's
+   *  bounding-box diagonal / 20. The tets' count grows like (size / tet_cell_size)³. */
+  double tet_cell_size;
   int32_t internal_cookie; /**< set by ps_hierarchy_def_init(); do not touch */
 } ps_hierarchy_def;
 
@@ -205,7 +213,9 @@ PS_API int32_t ps_hierarchy_get_faces(const ps_hierarchy* hierarchy, int32_t lev
 /**
  * Prolongs positions of `level` to the finest level with the shell prolongation
  * x = U x_l + a(x_l) (PSQ eq. 9): rigid motions of the coarse shape carry over exactly and the
- * rest shape of the level gives the finest rest shape.
+ * rest shape of the level gives the finest rest shape. On a solid's hierarchy: the product of
+ * the barycentric prolongations W of the levels above (VPD §3.3), which carries affine maps
+ * of the coarse solid over exactly.
  * @param positions  (n_level × 3) doubles, m; count = 3 n_level. Borrowed.
  * @param out        (n_finest × 3) doubles into out[capacity]; *out_count = 3 n_finest.
  *                   Nullable (size query). The finest level copies positions through.
@@ -228,6 +238,60 @@ PS_API int32_t ps_hierarchy_save(const ps_hierarchy* hierarchy, const char* path
  *  and the problem.
  *  @param out  receives the new hierarchy; caller owns (ps_hierarchy_destroy()). */
 PS_API int32_t ps_hierarchy_load(const char* path, ps_hierarchy** out);
+
+/* Solids (VPD §3.1.2). A solid's hierarchy holds a tet mesh per level: the finest is the user's,
+ * each coarser one the tetrahedralization of its decimated boundary surface, and each finer
+ * level's vertices are bound to the next coarser level's tets (barycentric weights, negative
+ * for vertices outside it; VPD §3.3). Levels do not share vertices. The calls above read a
+ * solid level's vertices (interior ones included) and its boundary faces over them;
+ * ps_hierarchy_save(), ps_hierarchy_load() and ps_hierarchy_num_expansion_batches() apply to
+ * shells only (PS_ERROR_UNSUPPORTED). A simulation on a solid's hierarchy of several levels
+ * in PS_MODE_DYNAMIC is volumetric progressive dynamics (PS_SIM_VOLUMETRIC_DYNAMICS). */
+
+/**
+ * Builds a solid's hierarchy from a tet mesh. The mesh is validated first (NaN/Inf
+ * coordinates, out-of-range indices, inverted or degenerate tets, duplicate tets, a boundary
+ * that is not a closed manifold → PS_ERROR_INVALID_MESH naming the first offender). Coarse
+ * levels: def->coarse_vertex_counts are the boundary vertex counts of the decimated surfaces
+ * (distinct, at least 4 and below the finest boundary's); each is tetrahedralized with
+ * def->tet_size_factor, which resamples the surface and adds interior vertices, so a coarse
+ * level's vertex count (ps_hierarchy_num_vertices) differs from the count asked for.
+ * def->pinned_vertices and def->contact_offset do not apply to solids' coarse levels. Progress
+ * phases: "decimation", "tetrahedralization", "binding".
+ * @param def       Nullable (defaults: one level). Borrowed during the call.
+ * @param vertices  (num_vertices × 3) positions, m. Copied.
+ * @param tets      (num_tets × 4) vertex indices, each tet positively oriented
+ *                  ((x1 − x0)·((x2 − x0) × (x3 − x0)) > 0). Copied.
+ * @param out       receives the new hierarchy; destroy with ps_hierarchy_destroy().
+ */
+PS_API int32_t ps_hierarchy_create_solid(const ps_hierarchy_def* def, const double* vertices,
+                                         size_t num_vertices, const int32_t* tets, size_t num_tets,
+                                         ps_hierarchy** out);
+
+/**
+ * As ps_hierarchy_create_solid(), the finest level being the solid a closed triangle surface
+ * bounds, tetrahedralized by CGAL Mesh_3 with def->tet_cell_size (the boundary then lies on
+ * the surface, its vertices resampled). A surface that is not valid, not closed or that
+ * intersects itself gives PS_ERROR_INVALID_MESH naming the problem.
+ */
+PS_API int32_t ps_hierarchy_create_solid_from_surface(const ps_hierarchy_def* def,
+                                                      const double* vertices, size_t num_vertices,
+                                                      const int32_t* faces, size_t num_faces,
+                                                      ps_hierarchy** out);
+
+/** As ps_hierarchy_create_solid() from a tet mesh file (Medit .mesh, Gmsh .msh v2/v4 ASCII,
+ *  TetGen .node/.ele), or as ps_hierarchy_create_solid_from_surface() from a closed surface
+ *  file (.obj, .off, .ply); the format from the extension. Unreadable files: PS_ERROR_IO. */
+PS_API int32_t ps_hierarchy_create_solid_from_file(const ps_hierarchy_def* def, const char* path,
+                                                   ps_hierarchy** out);
+
+/** 1 into *out for a solid's (tet) hierarchy, 0 for a shell's. */
+PS_API int32_t ps_hierarchy_is_solid(const ps_hierarchy* hierarchy, int32_t* out);
+
+/** Tets of a solid's level: (k × 4) indices into the level's vertices into out[capacity];
+ *  *count = 4k. out is nullable (size query). A shell's hierarchy has none: *count = 0. */
+PS_API int32_t ps_hierarchy_get_tets(const ps_hierarchy* hierarchy, int32_t level, int32_t* out,
+                                     size_t capacity, size_t* count);
 
 /* ---------------------------------------------------------------- simulation ----------- */
 
@@ -364,6 +428,12 @@ PS_API void ps_sim_def_init(ps_sim_def* def);
  * levels give Progressive Dynamics in PS_MODE_DYNAMIC (the default: a progressive animation)
  * and PSQ in PS_MODE_QUASISTATIC. On several levels the pinned vertices must be the
  * hierarchy's (ps_hierarchy_def.pinned_vertices; otherwise PS_ERROR_INVALID_ARGUMENT).
+ * On a solid's hierarchy the body is the finest tet mesh (material_* its Young's modulus,
+ * Poisson ratio and density; choice "material.solid_model" its energy) and its effects must
+ * include PS_EFFECT_ELASTICITY and no shell effect (membrane, bending, pressure, strain limit,
+ * wind: PS_ERROR_INVALID_SCENE naming it); a NULL def gives elasticity and gravity. Several
+ * levels animate it with VPD in PS_MODE_DYNAMIC; PS_MODE_QUASISTATIC needs one level
+ * (PS_ERROR_UNSUPPORTED), as do pinned vertices (VPD has no handles yet).
  * @param out receives the simulation; caller owns, destroy with ps_sim_destroy().
  * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_INVALID_ARGUMENT (a parameter NaN or out of
  * its range, a prediction that is not a ps_prediction, naming it), PS_ERROR_INVALID_SCENE (a
@@ -377,8 +447,9 @@ PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* de
  * Creates a simulation from a JSON scene (format: scenes/README.md). Its bodies' meshes form
  * the hierarchy, which the simulation owns (see ps_sim_hierarchy()). A dynamic scene with a
  * "progressive" section of coarse levels gives a progressive animation (Progressive Dynamics;
- * its "prediction" and "consistency_weight" apply), a quasistatic one PSQ, a scene without
- * coarse levels a direct simulation.
+ * its "prediction" and "consistency_weight" apply; VPD for a volumetric body, whose hierarchy
+ * is then a solid's), a quasistatic one PSQ, a scene without coarse levels a direct
+ * simulation.
  * @param json     NUL-terminated scene text. Borrowed during the call.
  * @param base_dir Nullable: directory that relative mesh paths in the scene start from
  *                 (NULL: the current directory).
@@ -410,6 +481,9 @@ typedef enum ps_sim_kind {
   /** several levels, dynamic: Progressive Dynamics, a progressive animation (frames per level,
    *  see "progressive animation" below) */
   PS_SIM_PROGRESSIVE_DYNAMICS = 2,
+  /** a solid's hierarchy of several levels, dynamic: volumetric progressive dynamics (VPD), a
+   *  progressive animation over tet levels, each with its own elastics */
+  PS_SIM_VOLUMETRIC_DYNAMICS = 3,
   PS_SIM_KIND_FORCE32 = 0x7fffffff
 } ps_sim_kind;
 

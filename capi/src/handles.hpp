@@ -9,31 +9,40 @@
 #include "api_guard.hpp"
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "hierarchy/shell_prolongation.hpp"
+#include "hierarchy/tet_hierarchy.hpp"
 #include "mesh/triangle_mesh.hpp"
-#include "progressive/progressive_dynamics.hpp"
+#include "progressive/progressive_animation.hpp"
 #include "progressive/progressive_simulation.hpp"
 #include "progsim.h"
 #include "scene/scene.hpp"
 
-/// A mesh hierarchy (levels[0] the coarsest, the last one the user's mesh) with the direct
-/// shell prolongation of every coarse level to the finest. Immutable once created.
+/// A hierarchy (level 0 the coarsest, the last one the user's mesh), exactly one of: a shell's
+/// mesh hierarchy with the direct shell prolongation of every coarse level to the finest, or a
+/// solid's tet hierarchy with each level's boundary surface. Immutable once created.
 struct ps_hierarchy {
   explicit ps_hierarchy(progsim::MeshHierarchy built);
   explicit ps_hierarchy(std::shared_ptr<const progsim::MeshHierarchy> built);
-  std::shared_ptr<const progsim::MeshHierarchy> shared;  ///< shared with its simulations
-  const progsim::MeshHierarchy& mesh_hierarchy;
-  std::vector<progsim::ShellProlongation> to_finest;  ///< P^l, l < finest (PSQ eq. 9)
-  mutable std::atomic<int> simulations{0};            ///< live simulations created on it
+  explicit ps_hierarchy(std::shared_ptr<const progsim::TetHierarchy> built);
+  std::shared_ptr<const progsim::MeshHierarchy> shared;  ///< a shell's, shared with its sims
+  std::shared_ptr<const progsim::TetHierarchy> solid;    ///< a solid's, shared with its sims
+  std::vector<progsim::ShellProlongation> to_finest;     ///< shells: P^l, l < finest (PSQ eq. 9)
+  std::vector<progsim::TriangleMesh> boundaries;         ///< solids: each level's boundary
+  mutable std::atomic<int> simulations{0};               ///< live simulations created on it
   mutable std::string last_error;
+
+  int num_levels() const;
+  /// The shell hierarchy; throws ApiError(PS_ERROR_UNSUPPORTED) for a solid's.
+  const progsim::MeshHierarchy& shells() const;
 };
 
 /// A simulation: exactly one driver is set. `simulation` is PSQ on several quasistatic levels
-/// (a direct simulation on a single-level hierarchy); `dynamics` animates several dynamic levels.
+/// (a direct simulation on a single-level hierarchy); `animation` animates several dynamic
+/// levels (Progressive Dynamics for a shell, VPD for a solid).
 struct ps_sim {
   const ps_hierarchy* hierarchy = nullptr;
   std::unique_ptr<ps_hierarchy> owned_hierarchy;  ///< set when created from a scene
   std::unique_ptr<progsim::ProgressiveSimulation> simulation;
-  std::unique_ptr<progsim::ProgressiveDynamics> dynamics;
+  std::unique_ptr<progsim::ProgressiveAnimation> animation;
   progsim::Scene scene;  ///< the scene as last set (parameters are edited here, then applied)
   bool busy = false;     ///< inside a long call (its progress callback may not call back)
   ps_progress_fn progress = nullptr;
@@ -67,17 +76,17 @@ ps_sim_kind sim_kind(const ps_sim& sim);
 /// animation, whose levels are animated by ProgressiveDynamics instead.
 ProgressiveSimulation& quasistatic_driver(const ps_sim& sim);
 
-/// The Progressive Dynamics driver; throws ApiError(PS_ERROR_INVALID_ARGUMENT) naming the
-/// sim's kind for any other simulation.
-ProgressiveDynamics& animation_driver(const ps_sim& sim);
+/// The progressive animation driver (PD or VPD); throws ApiError(PS_ERROR_INVALID_ARGUMENT)
+/// naming the sim's kind for any other simulation.
+ProgressiveAnimation& animation_driver(const ps_sim& sim);
 
 /// Applies an edited copy of the scene; on failure the simulation keeps its old scene.
 template <typename Edit>
 void edit_scene(ps_sim& sim, Edit&& edit) {
   Scene scene = sim.scene;
   edit(scene);
-  if (sim.dynamics)
-    sim.dynamics->update_scene(scene);
+  if (sim.animation)
+    sim.animation->update_scene(scene);
   else
     sim.simulation->update_scene(scene);
   sim.scene = std::move(scene);
@@ -117,7 +126,8 @@ inline std::string* error_slot(const ps_sim* sim) {
   return sim ? &sim->last_error : nullptr;
 }
 
-/// The level's mesh; throws ApiError(PS_ERROR_OUT_OF_RANGE) naming the valid range.
+/// The level's surface (a solid's boundary); throws ApiError(PS_ERROR_OUT_OF_RANGE) naming the
+/// valid range.
 const TriangleMesh& level_mesh(const ps_hierarchy& hierarchy, int32_t level);
 
 /// The size-then-fill protocol of the header: *count = n; copies n values into out unless

@@ -10,16 +10,36 @@
 #include "hierarchy/hierarchy_io.hpp"
 #include "hierarchy/level_prolongation.hpp"
 #include "mesh/mesh_io.hpp"
+#include "mesh/tet_boundary.hpp"
+#include "mesh/tet_mesh_io.hpp"
+#include "mesh/tetrahedralize.hpp"
 #include "percent_progress.hpp"
 
 ps_hierarchy::ps_hierarchy(progsim::MeshHierarchy built)
     : ps_hierarchy(std::make_shared<const progsim::MeshHierarchy>(std::move(built))) {}
 
 ps_hierarchy::ps_hierarchy(std::shared_ptr<const progsim::MeshHierarchy> built)
-    : shared(std::move(built)), mesh_hierarchy(*shared) {
-  to_finest.reserve(mesh_hierarchy.finest());
-  for (int l = 0; l < mesh_hierarchy.finest(); ++l)
-    to_finest.push_back(progsim::direct_prolongation(mesh_hierarchy, l));
+    : shared(std::move(built)) {
+  to_finest.reserve(shared->finest());
+  for (int l = 0; l < shared->finest(); ++l)
+    to_finest.push_back(progsim::direct_prolongation(*shared, l));
+}
+
+ps_hierarchy::ps_hierarchy(std::shared_ptr<const progsim::TetHierarchy> built)
+    : solid(std::move(built)) {
+  for (const progsim::TetMesh& level : solid->levels)
+    boundaries.push_back({level.vertices, progsim::tet_boundary_faces(level)});
+}
+
+int ps_hierarchy::num_levels() const {
+  return solid ? solid->num_levels() : shared->num_levels();
+}
+
+const progsim::MeshHierarchy& ps_hierarchy::shells() const {
+  if (solid)
+    progsim::capi::api_fail(PS_ERROR_UNSUPPORTED,
+                            "the call applies to a shell's hierarchy; this one is a solid's");
+  return *shared;
 }
 
 namespace progsim::capi {
@@ -73,6 +93,54 @@ std::unique_ptr<ps_hierarchy> build(const ps_hierarchy_def* def, const TriangleM
       build_hierarchy(mesh, options, forward.fn ? PercentProgress::call : nullptr, &forward));
 }
 
+/// The tet hierarchy def asks for over `finest` (validated by build_tet_hierarchy).
+std::unique_ptr<ps_hierarchy> build_solid(const ps_hierarchy_def* def, const TetMesh& finest) {
+  const HierarchyOptions shell = hierarchy_options(def, 0);
+  TetHierarchyOptions options;
+  options.coarse_boundary_vertex_counts = shell.coarse_vertex_counts;
+  if (def) options.size_factor = def->tet_size_factor;
+  PercentProgress forward{def ? def->progress : nullptr, def ? def->progress_user_data : nullptr};
+  return std::make_unique<ps_hierarchy>(std::make_shared<const TetHierarchy>(build_tet_hierarchy(
+      finest, options, forward.fn ? PercentProgress::call : nullptr, &forward)));
+}
+
+/// Positions of `level` prolonged to the finest level: P^l for shells (PSQ eq. 9), the product
+/// of the W of the levels above for solids (VPD §3.3).
+Positions prolonged_to_finest(const ps_hierarchy& hierarchy, int32_t level, Positions x) {
+  if (!hierarchy.solid)
+    return level + 1 == hierarchy.num_levels() ? x : hierarchy.to_finest[level](x);
+  for (int l = level; l + 1 < hierarchy.num_levels(); ++l) x = hierarchy.solid->to_finer[l] * x;
+  return x;
+}
+
+/// A tet mesh from the C ABI's borrowed arrays, as borrowed_mesh for triangles.
+TetMesh borrowed_tet_mesh(const double* vertices, std::size_t num_vertices, const int32_t* tets,
+                          std::size_t num_tets) {
+  require(vertices, "vertices");
+  require(tets, "tets");
+  constexpr size_t kMax = static_cast<size_t>(std::numeric_limits<int32_t>::max() / 4);
+  if (num_vertices == 0 || num_tets == 0 || num_vertices > kMax || num_tets > kMax)
+    api_fail(PS_ERROR_INVALID_MESH, "a tet mesh needs 1 to " + std::to_string(kMax) +
+                                        " vertices and tets, got " + std::to_string(num_vertices) +
+                                        " vertices and " + std::to_string(num_tets) + " tets");
+  TetMesh mesh;
+  mesh.vertices = Eigen::Map<const Positions>(vertices, static_cast<Eigen::Index>(num_vertices), 3);
+  mesh.tets = Eigen::Map<const Tets>(tets, static_cast<Eigen::Index>(num_tets), 4);
+  return mesh;
+}
+
+/// The solid `closed_surface` bounds, tetrahedralized with def's cell size.
+TetMesh tetrahedralized(const ps_hierarchy_def* def, const TriangleMesh& closed_surface) {
+  TetrahedralizeOptions options;
+  if (def) {
+    if (!(def->tet_cell_size >= 0.0) || !std::isfinite(def->tet_cell_size))
+      api_fail(PS_ERROR_INVALID_ARGUMENT, "tet_cell_size = " + std::to_string(def->tet_cell_size) +
+                                              " is invalid: it must be a finite length >= 0 (m)");
+    options.cell_size = def->tet_cell_size;
+  }
+  return tetrahedralize_surface(closed_surface, options);
+}
+
 }  // namespace
 
 TriangleMesh borrowed_mesh(const double* vertices, std::size_t num_vertices, const int32_t* faces,
@@ -92,12 +160,12 @@ TriangleMesh borrowed_mesh(const double* vertices, std::size_t num_vertices, con
 }
 
 const TriangleMesh& level_mesh(const ps_hierarchy& hierarchy, int32_t level) {
-  const auto n = static_cast<int32_t>(hierarchy.mesh_hierarchy.levels.size());
+  const int32_t n = hierarchy.num_levels();
   if (level < 0 || level >= n)
     api_fail(PS_ERROR_OUT_OF_RANGE, "level " + std::to_string(level) +
                                         " does not exist (levels 0 to " + std::to_string(n - 1) +
                                         ")");
-  return hierarchy.mesh_hierarchy.levels[level].rest;
+  return hierarchy.solid ? hierarchy.boundaries[level] : hierarchy.shared->levels[level].rest;
 }
 
 }  // namespace progsim::capi
@@ -110,6 +178,7 @@ extern "C" {
 PS_API void ps_hierarchy_def_init(ps_hierarchy_def* def) {
   if (!def) return;
   *def = ps_hierarchy_def{};
+  def->tet_size_factor = TetHierarchyOptions{}.size_factor;
   def->internal_cookie = kHierarchyCookie;
 }
 
@@ -132,6 +201,58 @@ PS_API int32_t ps_hierarchy_create_from_file(const ps_hierarchy_def* def, const 
   });
 }
 
+PS_API int32_t ps_hierarchy_create_solid(const ps_hierarchy_def* def, const double* vertices,
+                                         size_t num_vertices, const int32_t* tets, size_t num_tets,
+                                         ps_hierarchy** out) {
+  return guarded(nullptr, "ps_hierarchy_create_solid", [&] {
+    require(out, "out");
+    *out = build_solid(def, borrowed_tet_mesh(vertices, num_vertices, tets, num_tets)).release();
+  });
+}
+
+PS_API int32_t ps_hierarchy_create_solid_from_surface(const ps_hierarchy_def* def,
+                                                      const double* vertices, size_t num_vertices,
+                                                      const int32_t* faces, size_t num_faces,
+                                                      ps_hierarchy** out) {
+  return guarded(nullptr, "ps_hierarchy_create_solid_from_surface", [&] {
+    require(out, "out");
+    const TriangleMesh surface = borrowed_mesh(vertices, num_vertices, faces, num_faces);
+    *out = build_solid(def, tetrahedralized(def, surface)).release();
+  });
+}
+
+PS_API int32_t ps_hierarchy_create_solid_from_file(const ps_hierarchy_def* def, const char* path,
+                                                   ps_hierarchy** out) {
+  return guarded(nullptr, "ps_hierarchy_create_solid_from_file", [&] {
+    require(out, "out");
+    require(path, "path");
+    hierarchy_options(def, 0);  // a bad def is reported before the file is read
+    const TetMesh finest =
+        is_tet_mesh_path(path) ? read_tet_mesh(path) : tetrahedralized(def, read_mesh(path));
+    *out = build_solid(def, finest).release();
+  });
+}
+
+PS_API int32_t ps_hierarchy_is_solid(const ps_hierarchy* hierarchy, int32_t* out) {
+  return guarded(hierarchy ? &hierarchy->last_error : nullptr, "ps_hierarchy_is_solid", [&] {
+    require(hierarchy, "hierarchy");
+    require(out, "out");
+    *out = hierarchy->solid ? 1 : 0;
+  });
+}
+
+PS_API int32_t ps_hierarchy_get_tets(const ps_hierarchy* hierarchy, int32_t level, int32_t* out,
+                                     size_t capacity, size_t* count) {
+  return guarded(hierarchy ? &hierarchy->last_error : nullptr, "ps_hierarchy_get_tets", [&] {
+    require(hierarchy, "hierarchy");
+    level_mesh(*hierarchy, level);  // range check
+    if (!hierarchy->solid)
+      return copy_out(static_cast<const int32_t*>(nullptr), 0, out, capacity, count);
+    const Tets& tets = hierarchy->solid->levels[level].tets;
+    copy_out(tets.data(), static_cast<size_t>(tets.size()), out, capacity, count);
+  });
+}
+
 PS_API int32_t ps_hierarchy_load(const char* path, ps_hierarchy** out) {
   return guarded(nullptr, "ps_hierarchy_load", [&] {
     require(out, "out");
@@ -149,7 +270,7 @@ PS_API int32_t ps_hierarchy_save(const ps_hierarchy* hierarchy, const char* path
   return guarded(hierarchy ? &hierarchy->last_error : nullptr, "ps_hierarchy_save", [&] {
     require(hierarchy, "hierarchy");
     require(path, "path");
-    save_hierarchy(hierarchy->mesh_hierarchy, path);
+    save_hierarchy(hierarchy->shells(), path);
   });
 }
 
@@ -172,7 +293,7 @@ PS_API int32_t ps_hierarchy_num_levels(const ps_hierarchy* hierarchy, int32_t* o
   return guarded(hierarchy ? &hierarchy->last_error : nullptr, "ps_hierarchy_num_levels", [&] {
     require(hierarchy, "hierarchy");
     require(out, "out");
-    *out = hierarchy->mesh_hierarchy.num_levels();
+    *out = hierarchy->num_levels();
   });
 }
 
@@ -218,16 +339,16 @@ PS_API int32_t ps_hierarchy_prolong(const ps_hierarchy* hierarchy, int32_t level
                                               " doubles; level " + std::to_string(level) +
                                               " needs " + std::to_string(mesh.vertices.size()) +
                                               " (3 per vertex)");
-    const MeshHierarchy& h = hierarchy->mesh_hierarchy;
+    const int32_t finest = hierarchy->num_levels() - 1;
     if (!out) {  // size query
-      const auto n = static_cast<size_t>(h.levels.back().rest.vertices.size());
+      const auto n = static_cast<size_t>(level_mesh(*hierarchy, finest).vertices.size());
       copy_out(static_cast<const double*>(nullptr), n, out, capacity, out_count);
       return;
     }
     const Positions coarse = Eigen::Map<const Positions>(positions, mesh.num_vertices(), 3);
     if (!coarse.allFinite())
       api_fail(PS_ERROR_INVALID_ARGUMENT, "positions contain NaN or infinite values");
-    const Positions fine = level == h.finest() ? coarse : hierarchy->to_finest[level](coarse);
+    const Positions fine = prolonged_to_finest(*hierarchy, level, coarse);
     copy_out(fine.data(), static_cast<size_t>(fine.size()), out, capacity, out_count);
   });
 }
@@ -239,7 +360,7 @@ PS_API int32_t ps_hierarchy_num_expansion_batches(const ps_hierarchy* hierarchy,
         require(hierarchy, "hierarchy");
         require(out, "out");
         level_mesh(*hierarchy, level);  // range check
-        const MeshHierarchy& h = hierarchy->mesh_hierarchy;
+        const MeshHierarchy& h = hierarchy->shells();
         if (level == h.finest())
           api_fail(PS_ERROR_OUT_OF_RANGE,
                    "the finest level " + std::to_string(level) + " is not refined further");

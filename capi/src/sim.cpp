@@ -1,6 +1,10 @@
 // ps_sim_*: creating simulations and changing their parameters between steps.
+#include <algorithm>
+
 #include "handles.hpp"
 #include "motion_args.hpp"
+#include "progressive/progressive_dynamics.hpp"
+#include "progressive/volumetric_dynamics.hpp"
 #include "scene/scene_json.hpp"
 #include "scene/scene_parameters.hpp"
 #include "sim_def.hpp"
@@ -8,21 +12,43 @@
 namespace progsim::capi {
 namespace {
 
-/// A dynamic scene on several levels is a progressive animation (Progressive Dynamics).
+/// A dynamic scene on several levels is a progressive animation (PD, or VPD for a solid).
 bool animated_progressively(const Scene& scene, int num_levels) {
   return num_levels > 1 && scene.mode == StepMode::dynamic;
 }
 
+bool has_solid(const Scene& scene) {
+  return std::any_of(scene.bodies.begin(), scene.bodies.end(), is_solid);
+}
+
+/// The driver of a solid's scene on `hierarchy` (a solid's, counted as in use by the caller).
+void build_solid_driver(ps_sim& sim, const Scene& scene, const ps_hierarchy& hierarchy) {
+  if (hierarchy.num_levels() == 1) {  // a direct simulation builds its own one-level hierarchy
+    sim.simulation = std::make_unique<ProgressiveSimulation>(scene, nullptr);
+    return;
+  }
+  if (!animated_progressively(scene, hierarchy.num_levels()))
+    api_fail(PS_ERROR_UNSUPPORTED,
+             "a quasistatic solid on several levels: PSQ refines shells; animate it (dynamic "
+             "mode, VPD) or simulate one level directly");
+  sim.animation = std::make_unique<VolumetricDynamics>(scene, hierarchy.solid);
+}
+
 /// The handle of a simulation of `scene` at the coarsest level, its driver built on `hierarchy`
-/// (nullptr: the driver builds it from the scene's bodies); the caller sets its hierarchy.
-std::unique_ptr<ps_sim> build_sim(Scene scene, std::shared_ptr<const MeshHierarchy> hierarchy) {
+/// (nullptr: the driver builds a shell hierarchy from the scene's bodies); the caller sets its
+/// hierarchy.
+std::unique_ptr<ps_sim> build_sim(Scene scene, const ps_hierarchy* hierarchy) {
   auto sim = std::make_unique<ps_sim>();
-  const int levels =
-      hierarchy ? hierarchy->num_levels() : scene.progressive.num_coarse_levels() + 1;
-  if (animated_progressively(scene, levels)) {
-    sim->dynamics = std::make_unique<ProgressiveDynamics>(scene, std::move(hierarchy));
+  if (hierarchy && hierarchy->solid) {
+    build_solid_driver(*sim, scene, *hierarchy);
   } else {
-    sim->simulation = std::make_unique<ProgressiveSimulation>(scene, std::move(hierarchy));
+    std::shared_ptr<const MeshHierarchy> shells = hierarchy ? hierarchy->shared : nullptr;
+    const int levels =
+        hierarchy ? hierarchy->num_levels() : scene.progressive.num_coarse_levels() + 1;
+    if (animated_progressively(scene, levels))
+      sim->animation = std::make_unique<ProgressiveDynamics>(scene, std::move(shells));
+    else
+      sim->simulation = std::make_unique<ProgressiveSimulation>(scene, std::move(shells));
   }
   sim->scene = std::move(scene);
   return sim;
@@ -30,35 +56,44 @@ std::unique_ptr<ps_sim> build_sim(Scene scene, std::shared_ptr<const MeshHierarc
 
 /// A simulation of scene on hierarchy (borrowed and counted as in use).
 std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
-  auto sim = build_sim(std::move(scene), hierarchy->shared);
+  auto sim = build_sim(std::move(scene), hierarchy);
   sim->hierarchy = hierarchy;
   ++hierarchy->simulations;  // last: nothing below can throw
   sim->counts_as_user = true;
   return sim;
 }
 
-/// A simulation of a parsed scene that owns the hierarchy of its merged bodies (the levels
-/// its "progressive" section asks for).
+/// A simulation of a parsed scene that owns its hierarchy: a solid's tet levels (the levels its
+/// "progressive" section asks for), or the shell hierarchy its driver builds from its bodies.
 std::unique_ptr<ps_sim> sim_from_scene(Scene scene) {
+  if (has_solid(scene)) {
+    auto owned = std::make_unique<ps_hierarchy>(
+        std::make_shared<const TetHierarchy>(build_scene_tet_hierarchy(scene)));
+    auto sim = build_sim(std::move(scene), owned.get());
+    sim->owned_hierarchy = std::move(owned);
+    sim->hierarchy = sim->owned_hierarchy.get();
+    return sim;
+  }
   auto sim = build_sim(std::move(scene), nullptr);
   sim->owned_hierarchy = std::make_unique<ps_hierarchy>(
-      sim->dynamics ? sim->dynamics->shared_hierarchy() : sim->simulation->shared_hierarchy());
+      sim->animation ? static_cast<const ProgressiveDynamics&>(*sim->animation).shared_hierarchy()
+                     : sim->simulation->shared_hierarchy());
   sim->hierarchy = sim->owned_hierarchy.get();
   return sim;
 }
 
 /// Whether the simulation has stepped, settled or refined since it was created or restarted.
 bool started(const ps_sim& sim) {
-  if (sim.dynamics) return sim.dynamics->level() > 0 || sim.dynamics->num_frames(0) > 1;
+  if (sim.animation) return sim.animation->level() > 0 || sim.animation->num_frames(0) > 1;
   const LevelRecord& first = sim.simulation->records().front();
   return sim.simulation->level() > 0 || first.steps + first.settles > 0;
 }
 
 /// The initial velocities of a progressive animation's preview (empty for other drivers).
 Vector preview_velocities(const ps_sim& sim) {
-  if (!sim.dynamics) return {};
+  if (!sim.animation) return {};
   Positions positions, velocities;
-  sim.dynamics->read_frame(0, 0, positions, velocities);
+  sim.animation->read_frame(0, 0, positions, velocities);
   return as_dofs(velocities);
 }
 
@@ -66,11 +101,11 @@ Vector preview_velocities(const ps_sim& sim) {
 /// animation's initial velocities; on error nothing changed.
 void replace_driver(ps_sim& sim, Scene scene) {
   const Vector velocities = preview_velocities(sim);
-  std::unique_ptr<ps_sim> fresh = build_sim(std::move(scene), sim.hierarchy->shared);
-  if (fresh->dynamics && velocities.size() > 0 && !velocities.isZero(0.0))
-    fresh->dynamics->set_preview_velocities(velocities);
+  std::unique_ptr<ps_sim> fresh = build_sim(std::move(scene), sim.hierarchy);
+  if (fresh->animation && velocities.size() > 0 && !velocities.isZero(0.0))
+    fresh->animation->set_preview_velocities(velocities);
   sim.simulation = std::move(fresh->simulation);
-  sim.dynamics = std::move(fresh->dynamics);
+  sim.animation = std::move(fresh->animation);
   sim.scene = std::move(fresh->scene);
 }
 
@@ -80,6 +115,9 @@ const char* kind_name(ps_sim_kind kind) {
       return "a progressive quasistatic simulation (PSQ)";
     case PS_SIM_PROGRESSIVE_DYNAMICS:
       return "a progressive animation (Progressive Dynamics: a dynamic simulation on several "
+             "levels)";
+    case PS_SIM_VOLUMETRIC_DYNAMICS:
+      return "a progressive animation of a solid (VPD: a dynamic simulation on several tet "
              "levels)";
     default:
       return "a direct simulation (one level)";
@@ -103,7 +141,7 @@ std::string handle_motion_name(int32_t handle) {
 const std::vector<HandleReaction>& last_reactions(const ps_sim& sim, int32_t level) {
   level_mesh(*sim.hierarchy, level);  // range check with the ABI's message
   if (sim.simulation) return sim.simulation->records()[level].reactions;
-  const std::vector<DynamicStepRecord>& steps = sim.dynamics->record(level).steps;
+  const std::vector<DynamicStepRecord>& steps = sim.animation->record(level).steps;
   static const std::vector<HandleReaction> none;
   return steps.empty() ? none : steps.back().reactions;
 }
@@ -115,8 +153,9 @@ void copy3(const Vec3& v, double out[3]) {
 }  // namespace
 
 ps_sim_kind sim_kind(const ps_sim& sim) {
-  if (sim.dynamics) return PS_SIM_PROGRESSIVE_DYNAMICS;
-  return sim.hierarchy->mesh_hierarchy.num_levels() > 1 ? PS_SIM_PSQ : PS_SIM_DIRECT;
+  if (sim.animation)
+    return sim.hierarchy->solid ? PS_SIM_VOLUMETRIC_DYNAMICS : PS_SIM_PROGRESSIVE_DYNAMICS;
+  return sim.hierarchy->num_levels() > 1 ? PS_SIM_PSQ : PS_SIM_DIRECT;
 }
 
 void rebuild_scene(ps_sim& sim, Scene scene, const char* what) {
@@ -143,13 +182,13 @@ ProgressiveSimulation& quasistatic_driver(const ps_sim& sim) {
   return *sim.simulation;
 }
 
-ProgressiveDynamics& animation_driver(const ps_sim& sim) {
-  if (!sim.dynamics)
+ProgressiveAnimation& animation_driver(const ps_sim& sim) {
+  if (!sim.animation)
     api_fail(PS_ERROR_INVALID_ARGUMENT,
              std::string("this simulation is ") + kind_name(sim_kind(sim)) +
                  ": frames, initial velocities and restarts belong to a progressive animation "
                  "(PS_MODE_DYNAMIC on a hierarchy of several levels)");
-  return *sim.dynamics;
+  return *sim.animation;
 }
 
 }  // namespace progsim::capi
@@ -165,8 +204,12 @@ PS_API int32_t ps_sim_create(const ps_hierarchy* hierarchy, const ps_sim_def* de
     require(out, "out");
     ps_sim_def defaults;
     ps_sim_def_init(&defaults);
-    const TriangleMesh& finest = hierarchy->mesh_hierarchy.levels.back().rest;
-    *out = make_sim(hierarchy, scene_from_def(def ? *def : defaults, finest)).release();
+    if (hierarchy->solid) defaults.effects = PS_EFFECT_ELASTICITY | PS_EFFECT_GRAVITY;
+    const int32_t finest = hierarchy->num_levels() - 1;
+    const Tets tets = hierarchy->solid ? hierarchy->solid->levels.back().tets : Tets();
+    *out = make_sim(hierarchy,
+                    scene_from_def(def ? *def : defaults, level_mesh(*hierarchy, finest), tets))
+               .release();
   });
 }
 

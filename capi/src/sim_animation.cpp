@@ -67,9 +67,9 @@ PS_API int32_t ps_sim_get_frame_velocities(const ps_sim* sim, int32_t level, int
 PS_API int32_t ps_sim_set_preview_velocities(ps_sim* sim, const double* velocities, size_t count) {
   return guarded(error_slot(sim), "ps_sim_set_preview_velocities", [&] {
     require_idle(sim);
-    ProgressiveDynamics& dynamics = animation_driver(*sim);
+    ProgressiveAnimation& animation = animation_driver(*sim);
     if (count > 0) require(velocities, "velocities");
-    dynamics.set_preview_velocities(
+    animation.set_preview_velocities(
         Eigen::Map<const Vector>(velocities, static_cast<Eigen::Index>(count)));
   });
 }

@@ -8,8 +8,7 @@ namespace {
 constexpr int32_t kSimCookie = 0x50535344;  // "PSSD"
 constexpr uint32_t kAllEffects = PS_EFFECT_MEMBRANE | PS_EFFECT_BENDING | PS_EFFECT_GRAVITY |
                                  PS_EFFECT_PRESSURE | PS_EFFECT_CONTACT | PS_EFFECT_FRICTION |
-                                 PS_EFFECT_STRAIN_LIMIT | PS_EFFECT_WIND |
-                                 PS_EFFECT_ELASTICITY;
+                                 PS_EFFECT_STRAIN_LIMIT | PS_EFFECT_WIND | PS_EFFECT_ELASTICITY;
 }  // namespace
 
 uint32_t effect_bits(const EffectSet& effects) {
@@ -54,11 +53,15 @@ DynamicsPrediction prediction_from_enum(int32_t prediction) {
   }
 }
 
-Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh) {
+Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh, const Tets& tets) {
   require_initialized(def.internal_cookie, kSimCookie, "ps_sim_def");
   Scene scene;
   scene.name = "c_api";
-  scene.bodies.push_back(Body{"body", mesh, ShellMaterial{}, 0.0, 0.0});
+  Body body;
+  body.name = "body";
+  body.mesh = mesh;
+  body.tets = tets;
+  scene.bodies.push_back(std::move(body));
   // Each table parameter group.name comes from the def field group_name.
 #define PROGSIM_PARAMETER(group, name, ...) \
   set_scene_parameter(scene, #group "." #name, static_cast<double>(def.group##_##name));

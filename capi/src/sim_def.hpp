@@ -5,9 +5,10 @@
 
 namespace progsim::capi {
 
-/// The scene a def describes on the given mesh (one body, handle 0 = the pinned vertices).
+/// The scene a def describes on the given mesh (one body, handle 0 = the pinned vertices): a
+/// shell, or with `tets` a solid whose faces are `mesh`'s (its boundary).
 /// Throws ApiError(PS_ERROR_UNINITIALIZED_DEF) for a def not filled by ps_sim_def_init().
-Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh);
+Scene scene_from_def(const ps_sim_def& def, const TriangleMesh& mesh, const Tets& tets = Tets());
 
 /// The ps_prediction of a prediction rule, and back (ApiError(PS_ERROR_INVALID_ARGUMENT) for a
 /// value that is not a ps_prediction).

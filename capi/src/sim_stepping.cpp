@@ -11,18 +11,18 @@ namespace {
 /// progressive animation's last frame of the level.
 Positions level_positions(const ps_sim& sim, int32_t level) {
   level_mesh(*sim.hierarchy, level);  // range check with the ABI's message
-  if (!sim.dynamics) return sim.simulation->positions(level);
+  if (!sim.animation) return sim.simulation->positions(level);
   Positions positions, velocities;
-  sim.dynamics->read_frame(level, sim.dynamics->num_frames(level) - 1, positions, velocities);
+  sim.animation->read_frame(level, sim.animation->num_frames(level) - 1, positions, velocities);
   return positions;
 }
 
 /// One step at the current level (the preview of a progressive animation); throws
 /// ApiError(PS_ERROR_NUMERICAL) if it produced non-finite positions.
 void step_once(ps_sim& sim) {
-  const StepRecord step = sim.dynamics ? sim.dynamics->step_preview() : sim.simulation->step();
+  const StepRecord step = sim.animation ? sim.animation->step_preview() : sim.simulation->step();
   const Vector& x =
-      sim.dynamics ? sim.dynamics->preview().dofs() : sim.simulation->current().dofs();
+      sim.animation ? sim.animation->preview().dofs() : sim.simulation->current().dofs();
   if (!x.allFinite())
     api_fail(PS_ERROR_NUMERICAL,
              "step " + std::to_string(step.step) + " produced non-finite positions");
@@ -81,8 +81,8 @@ PS_API int32_t ps_sim_refine(ps_sim* sim) {
   return guarded(error_slot(sim), "ps_sim_refine", [&] {
     require_idle(sim);
     const BusyGuard busy(*sim);
-    if (sim->dynamics) {  // cancelling makes the core throw Error(cancelled), nothing changed
-      sim->dynamics->refine(
+    if (sim->animation) {  // cancelling makes the core throw Error(cancelled), nothing changed
+      sim->animation->refine(
           [&](int done, int total) { return !cancelled(*sim, done, total, "refine"); });
       return;
     }
@@ -107,7 +107,7 @@ PS_API int32_t ps_sim_current_level(const ps_sim* sim, int32_t* out) {
   return guarded(error_slot(sim), "ps_sim_current_level", [&] {
     require_idle(sim);
     require(out, "out");
-    *out = sim->dynamics ? sim->dynamics->level() : sim->simulation->level();
+    *out = sim->animation ? sim->animation->level() : sim->simulation->level();
   });
 }
 
