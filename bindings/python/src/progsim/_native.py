@@ -172,15 +172,18 @@ def as_vertices(vertices: Any, name: str = "vertices") -> np.ndarray:
 def as_indices(indices: Any, name: str, shape: str, error=InvalidArgumentError) -> np.ndarray:
     """``indices`` as a C-contiguous int32 array, copied only if needed.
 
-    ``shape`` is ``"(m, 3)"`` or ``"(k,)"``; integer arrays of other widths are accepted when
-    every value fits int32 (``error`` is raised otherwise: no silent wrap-around).
+    ``shape`` is ``"(m, 3)"``, ``"(k, 4)"`` or ``"(k,)"`` (the number after the comma is the
+    column count); integer arrays of other widths are accepted when every value fits int32
+    (``error`` is raised otherwise: no silent wrap-around).
     """
     array = np.asarray(indices)
     if shape == "(k,)":
         if array.ndim != 1:
             raise InvalidArgumentError(f"{name} must be a 1-D sequence, got shape {array.shape}")
-    elif array.ndim != 2 or array.shape[1] != 3:
-        raise InvalidArgumentError(f"{name} must have shape {shape}, got {array.shape}")
+    else:
+        columns = int(shape.rstrip(")").rsplit(",", 1)[1])
+        if array.ndim != 2 or array.shape[1] != columns:
+            raise InvalidArgumentError(f"{name} must have shape {shape}, got {array.shape}")
     if array.size == 0:
         return np.ascontiguousarray(array, dtype=np.int32)
     if array.dtype.kind not in "iu":
@@ -198,6 +201,11 @@ def as_faces(faces: Any) -> np.ndarray:
     return as_indices(faces, "faces", "(m, 3)", error=InvalidMeshError)
 
 
+def as_tets(tets: Any) -> np.ndarray:
+    """``tets`` as a C-contiguous int32 (k, 4) array."""
+    return as_indices(tets, "tets", "(k, 4)", error=InvalidMeshError)
+
+
 def index_buffer(values: Optional[Sequence[int]], name: str) -> Tuple[np.ndarray, "ffi.CData"]:
     """``values`` as an int32 array and a cffi buffer over it (NULL when empty); keep both
     alive while C borrows the buffer."""
@@ -205,15 +213,18 @@ def index_buffer(values: Optional[Sequence[int]], name: str) -> Tuple[np.ndarray
     return array, (ffi.from_buffer("int32_t[]", array) if array.size else ffi.NULL)
 
 
-def output_array(out: Optional[np.ndarray], rows: int, dtype: Any, name: str) -> np.ndarray:
-    """A writable C-contiguous (rows, 3) array of ``dtype``: ``out`` itself, or a new one."""
+def output_array(
+    out: Optional[np.ndarray], rows: int, dtype: Any, name: str, columns: int = 3
+) -> np.ndarray:
+    """A writable C-contiguous (rows, columns) array of ``dtype``: ``out`` itself, or a new
+    one."""
     if out is None:
-        return np.empty((rows, 3), dtype=dtype)
+        return np.empty((rows, columns), dtype=dtype)
     if not isinstance(out, np.ndarray):
         raise InvalidArgumentError(f"{name} must be a numpy array")
-    if out.dtype != np.dtype(dtype) or out.shape != (rows, 3):
+    if out.dtype != np.dtype(dtype) or out.shape != (rows, columns):
         raise InvalidArgumentError(
-            f"{name} must be a {np.dtype(dtype).name} array of shape ({rows}, 3), "
+            f"{name} must be a {np.dtype(dtype).name} array of shape ({rows}, {columns}), "
             f"got {out.dtype.name} {out.shape}"
         )
     if not out.flags.c_contiguous or not out.flags.writeable:
@@ -227,8 +238,9 @@ def fetch_rows(
     where: Tuple[int, ...],
     dtype: Any,
     out: Optional[np.ndarray],
+    columns: int = 3,
 ) -> np.ndarray:
-    """Runs the C ABI's size-then-fill protocol for a (rows, 3) array.
+    """Runs the C ABI's size-then-fill protocol for a (rows, columns) array.
 
     ``call(function, *args)`` is the owner's checked call; ``function`` a ps_*_get_* entry
     point taking (handle, *where, buffer, capacity, count), ``where`` being (level,) or
@@ -237,7 +249,7 @@ def fetch_rows(
     ctype = "double[]" if np.dtype(dtype) == np.float64 else "int32_t[]"
     count = ffi.new("size_t*")
     call(function, *where, ffi.NULL, 0, count)
-    array = output_array(out, count[0] // 3, dtype, "out")
+    array = output_array(out, count[0] // columns, dtype, "out", columns)
     buffer = ffi.from_buffer(ctype, array, require_writable=True)
     call(function, *where, buffer, array.size, count)
     return array

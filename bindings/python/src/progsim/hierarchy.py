@@ -12,6 +12,7 @@ from ._native import (
     ProgressArg,
     ProgressRun,
     as_faces,
+    as_tets,
     as_vertices,
     check_create,
     int32_value,
@@ -35,9 +36,11 @@ def _hierarchy_def(
     pinned: Optional[Sequence[int]],
     contact_offset: float,
     run: ProgressRun,
+    tet_size_factor: Optional[float] = None,
+    tet_cell_size: Optional[float] = None,
 ):
     """A filled ``ps_hierarchy_def*`` with the progress trampoline installed, and the buffers
-    it borrows (keep them alive during the call)."""
+    it borrows (keep them alive during the call). ``None`` keeps a field's default."""
     definition = ffi.new("ps_hierarchy_def*")
     lib.ps_hierarchy_def_init(definition)
     counts, buffer = index_buffer(coarse_vertex_counts, "coarse_vertex_counts")
@@ -47,16 +50,29 @@ def _hierarchy_def(
     definition.pinned_vertices = pin_buffer
     definition.num_pinned_vertices = int(pins.size)
     definition.contact_offset = real_value(contact_offset, "contact_offset")
+    if tet_size_factor is not None:
+        definition.tet_size_factor = real_value(tet_size_factor, "tet_size_factor")
+    if tet_cell_size is not None:
+        definition.tet_cell_size = real_value(tet_cell_size, "tet_cell_size")
     run.install(definition)
     return definition, (counts, buffer, pins, pin_buffer)
 
 
 def _create(
-    function, coarse_vertex_counts, pinned, contact_offset, progress: ProgressArg, *args: Any
+    function,
+    coarse_vertex_counts,
+    pinned,
+    contact_offset,
+    progress: ProgressArg,
+    *args: Any,
+    tet_size_factor: Optional[float] = None,
+    tet_cell_size: Optional[float] = None,
 ) -> "ffi.CData":
     """Runs a ps_hierarchy_create* call with a def and progress reporting; returns the handle."""
     run = ProgressRun(progress)
-    definition, keep = _hierarchy_def(coarse_vertex_counts, pinned, contact_offset, run)
+    definition, keep = _hierarchy_def(
+        coarse_vertex_counts, pinned, contact_offset, run, tet_size_factor, tet_cell_size
+    )
     out = ffi.new("ps_hierarchy**")
     try:
         status = function(definition, *args, out)
@@ -76,6 +92,12 @@ class Hierarchy(NativeObject):
     the mesh is decimated into coarser levels (quadric edge collapse with probabilistic
     quadrics, PSQ §4.1), each with the shell prolongation to the finest level (:meth:`prolong`,
     PSQ eq. 9) and its parallel expansion batches (PSQ §4.4.4).
+
+    A solid's hierarchy (:attr:`is_solid`; VPD §3.1.2) holds a tet mesh per level: build one
+    from tets (:meth:`from_tets`), from a closed surface (:meth:`from_closed_surface`) or from
+    a file (:meth:`solid_from_file`). Its levels' :meth:`rest_positions` include the interior
+    vertices, :meth:`faces` are the boundary faces over them and :meth:`tets` the tets; a
+    simulation on several levels of it is volumetric progressive dynamics (VPD).
 
     Level arguments accept negative values counted from the finest level (``-1`` is the
     finest), like Python sequence indices.
@@ -155,18 +177,151 @@ class Hierarchy(NativeObject):
             ProgsimIOError: the file cannot be read.
             InvalidMeshError: the mesh fails validation (see :class:`Hierarchy`).
         """
+        return cls._created(
+            lib.ps_hierarchy_create_from_file,
+            coarse_vertex_counts,
+            pinned,
+            contact_offset,
+            progress,
+            os.fsencode(path),
+        )
+
+    @classmethod
+    def from_tets(
+        cls,
+        vertices: Any,
+        tets: Any,
+        *,
+        coarse_vertex_counts: Optional[Sequence[int]] = None,
+        tet_size_factor: Optional[float] = None,
+        progress: ProgressArg = False,
+    ) -> "Hierarchy":
+        """Builds a solid's hierarchy from a tet mesh, validating it first
+        (``ps_hierarchy_create_solid``).
+
+        The finest level is the mesh unchanged; each coarser level is the tetrahedralization
+        of its decimated boundary surface, and each finer level's vertices are bound to the
+        next coarser level's tets (barycentric weights; VPD §3.3). Levels share no vertices.
+
+        Args:
+            vertices: (n, 3) positions in metres; converted to C-contiguous float64.
+            tets: (k, 4) vertex indices, each tet positively oriented
+                ((x1 − x0)·((x2 − x0) × (x3 − x0)) > 0); converted to C-contiguous int32.
+            coarse_vertex_counts: boundary vertex counts of the coarser levels' decimated
+                surfaces (distinct, each at least 4 and below the finest boundary's);
+                ``None`` or empty: a single level, the mesh itself.
+            tet_size_factor: size of a coarse level's tets and boundary faces in multiples of
+                its surface's mean edge length, in (0, 100]; default (``None``) 0.6.
+            progress: ``True`` for a tqdm bar, ``False`` for none, or a callable
+                ``(done, total, phase) -> bool`` (phases ``"decimation"``,
+                ``"tetrahedralization"``, ``"binding"``; return True to cancel).
+
+        Raises:
+            InvalidMeshError: NaN/Inf coordinates, out-of-range indices, inverted or degenerate
+                tets, duplicate tets, a boundary that is not a closed manifold; the message
+                names the first offender.
+            InvalidArgumentError: arrays of the wrong shape or dtype, bad vertex counts or
+                size factor.
+            CancelledError: the progress callable asked to stop.
+        """
+        vertex_array = as_vertices(vertices)
+        tet_array = as_tets(tets)
+        return cls._created(
+            lib.ps_hierarchy_create_solid,
+            coarse_vertex_counts,
+            None,
+            0.0,
+            progress,
+            ffi.from_buffer("double[]", vertex_array),
+            vertex_array.shape[0],
+            ffi.from_buffer("int32_t[]", tet_array),
+            tet_array.shape[0],
+            tet_size_factor=tet_size_factor,
+        )
+
+    @classmethod
+    def from_closed_surface(
+        cls,
+        vertices: Any,
+        faces: Any,
+        *,
+        coarse_vertex_counts: Optional[Sequence[int]] = None,
+        tet_size_factor: Optional[float] = None,
+        tet_cell_size: Optional[float] = None,
+        progress: ProgressArg = False,
+    ) -> "Hierarchy":
+        """Builds a solid's hierarchy from the solid a closed triangle surface bounds
+        (``ps_hierarchy_create_solid_from_surface``): the surface is tetrahedralized (CGAL
+        Mesh_3; its boundary then lies on the surface, the vertices resampled) into the finest
+        level, then coarsened as in :meth:`from_tets`.
+
+        Args:
+            vertices: (n, 3) positions in metres.
+            faces: (m, 3) vertex indices of a closed, non-self-intersecting surface.
+            coarse_vertex_counts, tet_size_factor, progress: as in :meth:`from_tets`.
+            tet_cell_size: the largest tet circumradius of the finest level, m, >= 0; default
+                (``None`` or 0) the surface's bounding-box diagonal / 20. The tet count grows
+                like (size / tet_cell_size)³.
+
+        Raises:
+            InvalidMeshError: a surface that is not valid, not closed or intersects itself.
+            InvalidArgumentError: arrays of the wrong shape or dtype, a bad cell size, size
+                factor or vertex counts.
+            CancelledError: the progress callable asked to stop.
+        """
+        vertex_array = as_vertices(vertices)
+        face_array = as_faces(faces)
+        return cls._created(
+            lib.ps_hierarchy_create_solid_from_surface,
+            coarse_vertex_counts,
+            None,
+            0.0,
+            progress,
+            ffi.from_buffer("double[]", vertex_array),
+            vertex_array.shape[0],
+            ffi.from_buffer("int32_t[]", face_array),
+            face_array.shape[0],
+            tet_size_factor=tet_size_factor,
+            tet_cell_size=tet_cell_size,
+        )
+
+    @classmethod
+    def solid_from_file(
+        cls,
+        path: PathLike,
+        *,
+        coarse_vertex_counts: Optional[Sequence[int]] = None,
+        tet_size_factor: Optional[float] = None,
+        tet_cell_size: Optional[float] = None,
+        progress: ProgressArg = False,
+    ) -> "Hierarchy":
+        """Builds a solid's hierarchy from a file (``ps_hierarchy_create_solid_from_file``;
+        the format from the extension): a tet mesh (Medit ``.mesh``, Gmsh ``.msh`` v2/v4
+        ASCII, TetGen ``.node``/``.ele``) as in :meth:`from_tets`, or a closed surface
+        (``.obj``, ``.off``, ``.ply``) as in :meth:`from_closed_surface`, with the same
+        options.
+
+        Raises:
+            ProgsimIOError: the file cannot be read.
+            InvalidMeshError: the mesh fails validation (see :meth:`from_tets`).
+        """
+        return cls._created(
+            lib.ps_hierarchy_create_solid_from_file,
+            coarse_vertex_counts,
+            None,
+            0.0,
+            progress,
+            os.fsencode(path),
+            tet_size_factor=tet_size_factor,
+            tet_cell_size=tet_cell_size,
+        )
+
+    @classmethod
+    def _created(cls, *args: Any, **options: Any) -> "Hierarchy":
+        """A new hierarchy owning the handle ``_create(*args, **options)`` creates."""
         self = cls.__new__(cls)
         self._init_native()
-        self._adopt(
-            _create(
-                lib.ps_hierarchy_create_from_file,
-                coarse_vertex_counts,
-                pinned,
-                contact_offset,
-                progress,
-                os.fsencode(path),
-            )
-        )
+        self._adopt(_create(*args, **options))
         return self
 
     @classmethod
@@ -189,6 +344,7 @@ class Hierarchy(NativeObject):
 
         Raises:
             ProgsimIOError: the file cannot be written.
+            UnsupportedError: a solid's hierarchy (shells only).
         """
         self._call(lib.ps_hierarchy_save, os.fsencode(path))
 
@@ -244,8 +400,16 @@ class Hierarchy(NativeObject):
             return counted if counted >= 0 else level
         return level
 
+    @property
+    def is_solid(self) -> bool:
+        """Whether this is a solid's (tet) hierarchy rather than a shell's."""
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_hierarchy_is_solid, out)
+        return bool(out[0])
+
     def level_size(self, level: Optional[int] = None) -> Tuple[int, int]:
-        """``(num_vertices, num_faces)`` of ``level`` (default: the finest).
+        """``(num_vertices, num_faces)`` of ``level`` (default: the finest); for a solid, its
+        vertices (interior ones included) and boundary faces.
 
         Raises:
             OutOfRangeError: the level does not exist.
@@ -270,7 +434,8 @@ class Hierarchy(NativeObject):
         )
 
     def faces(self, level: Optional[int] = None, out: Optional[np.ndarray] = None) -> np.ndarray:
-        """Faces of ``level`` (default: the finest) as an int32 (m, 3) array of vertex indices.
+        """Faces of ``level`` (default: the finest) as an int32 (m, 3) array of vertex indices
+        (a solid's: its boundary faces, outward).
 
         Args:
             out: optional C-contiguous int32 (m, 3) array to fill instead of a new one.
@@ -280,11 +445,28 @@ class Hierarchy(NativeObject):
         """
         return fetch_rows(self._call, lib.ps_hierarchy_get_faces, (self._level(level),), np.int32, out)
 
+    def tets(self, level: Optional[int] = None, out: Optional[np.ndarray] = None) -> np.ndarray:
+        """Tets of a solid's ``level`` (default: the finest) as an int32 (k, 4) array of
+        indices into the level's vertices (:meth:`rest_positions`), positively oriented; a
+        shell's hierarchy has none: shape (0, 4).
+
+        Args:
+            out: optional C-contiguous int32 (k, 4) array to fill instead of a new one.
+
+        Raises:
+            OutOfRangeError: the level does not exist.
+        """
+        return fetch_rows(
+            self._call, lib.ps_hierarchy_get_tets, (self._level(level),), np.int32, out, 4
+        )
+
     def prolong(
         self, positions: Any, level: int = 0, out: Optional[np.ndarray] = None
     ) -> np.ndarray:
         """Positions of ``level`` prolonged to the finest level by the shell prolongation
-        x = U x_l + a(x_l) (PSQ eq. 9) as a float64 (n_finest, 3) array, m.
+        x = U x_l + a(x_l) (PSQ eq. 9) as a float64 (n_finest, 3) array, m. On a solid's
+        hierarchy: the product of the barycentric prolongations W of the levels above (VPD
+        §3.3), which carries affine maps of the coarse solid over exactly.
 
         Args:
             positions: (n_level, 3) positions of the level, m.
@@ -309,6 +491,7 @@ class Hierarchy(NativeObject):
 
         Raises:
             OutOfRangeError: the level does not exist or is the finest.
+            UnsupportedError: a solid's hierarchy (shells only).
         """
         out = ffi.new("int32_t*")
         self._call(lib.ps_hierarchy_num_expansion_batches, self._level(level), out)
@@ -319,6 +502,11 @@ class Hierarchy(NativeObject):
             return "<progsim.Hierarchy (closed)>"
         try:
             vertices, faces = self.level_size()
+            if self.is_solid:
+                return (
+                    f"<progsim.Hierarchy solid, {self.num_levels} level(s), finest {vertices} "
+                    f"vertices, {len(self.tets())} tets, {faces} boundary faces>"
+                )
             return (
                 f"<progsim.Hierarchy {self.num_levels} level(s), "
                 f"finest {vertices} vertices, {faces} faces>"

@@ -93,12 +93,18 @@ INTERPOLATIONS: Dict[str, int] = {
 }
 
 #: What drives a simulation (``ps_sim_kind``): one level is ``direct``; several levels are
-#: ``psq`` (quasistatic) or ``progressive_dynamics`` (dynamic: a progressive animation).
+#: ``psq`` (quasistatic) or ``progressive_dynamics`` (dynamic: a progressive animation), and
+#: on a solid's hierarchy ``volumetric_dynamics`` (dynamic: VPD, a progressive animation over
+#: tet levels).
 KINDS: Dict[str, int] = {
     "direct": lib.PS_SIM_DIRECT,
     "psq": lib.PS_SIM_PSQ,
     "progressive_dynamics": lib.PS_SIM_PROGRESSIVE_DYNAMICS,
+    "volumetric_dynamics": lib.PS_SIM_VOLUMETRIC_DYNAMICS,
 }
+
+#: Kinds that are progressive animations (frames per level, :meth:`Simulation.frames`).
+_ANIMATIONS = frozenset({"progressive_dynamics", "volumetric_dynamics"})
 
 #: Load distributions of :meth:`Simulation.add_load` (``ps_load_distribution``).
 LOAD_DISTRIBUTIONS: Dict[str, int] = {
@@ -473,7 +479,11 @@ class Simulation(NativeObject):
 
         Its :attr:`kind` follows from the hierarchy and the mode: one level gives a direct
         simulation; several levels give a progressive animation (Progressive Dynamics) in
-        ``"dynamic"`` mode, the default, and PSQ in ``"quasistatic"`` mode.
+        ``"dynamic"`` mode, the default, and PSQ in ``"quasistatic"`` mode. On a solid's
+        hierarchy (:attr:`Hierarchy.is_solid`) the body is the finest tet mesh
+        (``youngs_modulus``, ``poisson_ratio`` and ``density`` its material); several levels
+        animate it with VPD (``"volumetric_dynamics"``) in ``"dynamic"`` mode, while
+        ``"quasistatic"`` mode and ``pinned`` need a single level.
 
         Every parameter left as None keeps the library default (``progsim params`` lists
         defaults and ranges).
@@ -530,8 +540,11 @@ class Simulation(NativeObject):
             prediction: how a progressive animation's finer levels predict each step from
                 the coarser frames, a :data:`PREDICTIONS` name; default ``"velocity_only"``.
             effects: names among ``membrane``, ``bending``, ``gravity``, ``pressure``,
-                ``contact``, ``friction``, ``strain_limit``, ``wind``;
-                default ``{"membrane", "bending", "gravity"}``.
+                ``contact``, ``friction``, ``strain_limit``, ``wind``, ``elasticity``;
+                default ``{"membrane", "bending", "gravity"}``, on a solid's hierarchy
+                ``{"elasticity", "gravity"}`` (the library's defaults for each). A solid's
+                effects must include ``elasticity`` and no shell effect (``membrane``,
+                ``bending``, ``pressure``, ``strain_limit``, ``wind``).
             gravity: (gx, gy, gz), m/s²; default (0, -9.81, 0).
             pressure: Pa, applied when the ``pressure`` effect is on; default 0.
             pinned: finest-level vertex indices held still (they form handle 0).
@@ -550,7 +563,10 @@ class Simulation(NativeObject):
 
         Raises:
             InvalidArgumentError: a value out of range, an unknown mode, effect or option.
-            InvalidSceneError: a pinned vertex out of range.
+            InvalidSceneError: a pinned vertex out of range; on a solid's hierarchy, effects
+                without ``elasticity`` or with a shell effect (naming it).
+            UnsupportedError: a solid's hierarchy of several levels in ``"quasistatic"`` mode
+                or with ``pinned`` vertices.
             ClosedError: ``hierarchy`` is closed.
         """
         super().__init__()
@@ -599,6 +615,8 @@ class Simulation(NativeObject):
             definition.prediction = _choice(PREDICTIONS, prediction, "prediction")
         if effects is not None:
             definition.effects = _effect_bits(effects)
+        elif hierarchy.is_solid:  # what ps_sim_create() gives a solid for a NULL def
+            definition.effects = lib.PS_EFFECT_ELASTICITY | lib.PS_EFFECT_GRAVITY
         if gravity is not None:
             definition.gravity = three_floats(gravity, "gravity")
         if pressure is not None:
@@ -719,7 +737,8 @@ class Simulation(NativeObject):
     @property
     def kind(self) -> str:
         """What drives this simulation, a :data:`KINDS` name: ``"direct"`` (one level),
-        ``"psq"`` (quasistatic levels) or ``"progressive_dynamics"`` (an animation)."""
+        ``"psq"`` (quasistatic levels), ``"progressive_dynamics"`` (an animation) or
+        ``"volumetric_dynamics"`` (an animation of a solid, VPD)."""
         out = ffi.new("int32_t*")
         self._call(lib.ps_sim_get_kind, out)
         return _name_of(KINDS, out[0])
@@ -1477,7 +1496,7 @@ class Simulation(NativeObject):
         if self.closed:
             return "<progsim.Simulation (closed)>"
         try:
-            if self.kind == "progressive_dynamics":
+            if self.kind in _ANIMATIONS:
                 return (
                     f"<progsim.Simulation progressive animation, level {self.current_level} of "
                     f"{self.num_levels} computed, {self.num_frames(0)} frames>"

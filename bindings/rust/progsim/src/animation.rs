@@ -1,5 +1,6 @@
-//! Progressive animation (Progressive Dynamics): the preview's frames, the finer levels
-//! animated over the same span, initial velocities, restarts and per-step statistics.
+//! Progressive animation (Progressive Dynamics, and VPD for solids): the preview's frames, the
+//! finer levels animated over the same span, initial velocities, restarts and per-step
+//! statistics.
 
 use std::mem::MaybeUninit;
 
@@ -52,6 +53,10 @@ pub enum SimulationKind {
     Psq,
     /// Several dynamic levels: a progressive animation (`PS_SIM_PROGRESSIVE_DYNAMICS`).
     ProgressiveDynamics,
+    /// A solid's hierarchy ([`Hierarchy::is_solid`](crate::Hierarchy::is_solid)) of several
+    /// dynamic levels: volumetric progressive dynamics (VPD), a progressive animation over
+    /// tet levels, each with its own elastics (`PS_SIM_VOLUMETRIC_DYNAMICS`).
+    VolumetricDynamics,
 }
 
 impl SimulationKind {
@@ -60,6 +65,7 @@ impl SimulationKind {
             sys::PS_SIM_DIRECT => Some(SimulationKind::Direct),
             sys::PS_SIM_PSQ => Some(SimulationKind::Psq),
             sys::PS_SIM_PROGRESSIVE_DYNAMICS => Some(SimulationKind::ProgressiveDynamics),
+            sys::PS_SIM_VOLUMETRIC_DYNAMICS => Some(SimulationKind::VolumetricDynamics),
             _ => None,
         }
     }

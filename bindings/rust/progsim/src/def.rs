@@ -9,8 +9,15 @@ use progsim_sys as sys;
 use crate::{Error, Prediction, Result, Status};
 
 /// How to build a [`Hierarchy`](crate::Hierarchy). The default (no coarse levels) gives one
-/// level: the input mesh itself.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// level: the input mesh itself. [`Default`] gives the library's defaults (from
+/// `ps_hierarchy_def_init()`); change fields with struct-update syntax:
+///
+/// ```
+/// # use progsim::HierarchyDef;
+/// let def = HierarchyDef { coarse_vertex_counts: vec![26], ..HierarchyDef::default() };
+/// assert_eq!((def.tet_size_factor, def.tet_cell_size), (0.6, 0.0));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
 pub struct HierarchyDef {
     /// Vertex count of each level below the finest (distinct, each at least 4 and below the
     /// mesh's; any order). Empty: a single level.
@@ -22,17 +29,43 @@ pub struct HierarchyDef {
     /// offset a contact simulation will use (half the shell thickness), no collapse also brings
     /// a vertex and a face, or two edges, within 2ξ (`ps_hierarchy_def.contact_offset`).
     pub contact_offset: f64,
+    /// Solids only: each coarse level is tetrahedralized with tets and boundary faces about
+    /// this many times its surface's mean edge length (m/m), in (0, 100]; default 0.6
+    /// (`ps_hierarchy_def.tet_size_factor`). Shells ignore it.
+    pub tet_size_factor: f64,
+    /// Solids from a closed surface only: the largest tet circumradius of the finest level, m,
+    /// ≥ 0; default 0 = the surface's bounding-box diagonal / 20
+    /// (`ps_hierarchy_def.tet_cell_size`). The tet count grows like (size / tet_cell_size)³.
+    pub tet_cell_size: f64,
+}
+
+/// The C defaults, filled by `ps_hierarchy_def_init()`.
+fn raw_hierarchy_def() -> sys::ps_hierarchy_def {
+    let mut raw = MaybeUninit::<sys::ps_hierarchy_def>::uninit();
+    // SAFETY: ps_hierarchy_def_init() fills every field of a non-NULL def.
+    unsafe {
+        sys::ps_hierarchy_def_init(raw.as_mut_ptr());
+        raw.assume_init()
+    }
+}
+
+impl Default for HierarchyDef {
+    fn default() -> HierarchyDef {
+        let raw = raw_hierarchy_def();
+        HierarchyDef {
+            coarse_vertex_counts: Vec::new(),
+            pinned_vertices: Vec::new(),
+            contact_offset: raw.contact_offset,
+            tet_size_factor: raw.tet_size_factor,
+            tet_cell_size: raw.tet_cell_size,
+        }
+    }
 }
 
 impl HierarchyDef {
     /// The C def borrowing `self`'s vectors: valid while `self` is.
     pub(crate) fn to_raw(&self) -> Result<sys::ps_hierarchy_def> {
-        let mut raw = MaybeUninit::<sys::ps_hierarchy_def>::uninit();
-        // SAFETY: ps_hierarchy_def_init() fills every field of a non-NULL def.
-        let mut raw = unsafe {
-            sys::ps_hierarchy_def_init(raw.as_mut_ptr());
-            raw.assume_init()
-        };
+        let mut raw = raw_hierarchy_def();
         raw.num_coarse_levels = i32::try_from(self.coarse_vertex_counts.len()).map_err(|_| {
             Error::new(Status::InvalidArgument, "too many coarse levels for the C ABI")
         })?;
@@ -44,6 +77,8 @@ impl HierarchyDef {
             raw.num_pinned_vertices = self.pinned_vertices.len();
         }
         raw.contact_offset = self.contact_offset;
+        raw.tet_size_factor = self.tet_size_factor;
+        raw.tet_cell_size = self.tet_cell_size;
         Ok(raw)
     }
 }
@@ -822,6 +857,24 @@ mod tests {
         assert_eq!(raw.gravity, [1.0, 2.0, 3.0]);
         assert_eq!(raw.num_pinned_vertices, 2);
         assert_eq!(raw.pinned_vertices, def.pinned_vertices.as_ptr());
+    }
+
+    #[test]
+    fn hierarchy_defaults_come_from_the_library() {
+        let def = HierarchyDef::default();
+        assert!(def.coarse_vertex_counts.is_empty() && def.pinned_vertices.is_empty());
+        assert_eq!(def.contact_offset, 0.0);
+        assert_eq!((def.tet_size_factor, def.tet_cell_size), (0.6, 0.0));
+        let def = HierarchyDef {
+            coarse_vertex_counts: vec![26, 60],
+            tet_size_factor: 0.8,
+            tet_cell_size: 0.05,
+            ..HierarchyDef::default()
+        };
+        let raw = def.to_raw().unwrap();
+        assert_eq!((raw.tet_size_factor, raw.tet_cell_size), (0.8, 0.05));
+        assert_eq!(raw.num_coarse_levels, 2);
+        assert_eq!(raw.coarse_vertex_counts, def.coarse_vertex_counts.as_ptr());
     }
 
     #[test]

@@ -8,13 +8,24 @@ use progsim_sys as sys;
 
 use crate::error::{check, check_thread};
 use crate::{
-    c_level, c_path, check_version, not_in_callback, read_triples, Error, HierarchyDef, Result,
-    Status,
+    c_level, c_path, check_version, not_in_callback, read_rows, read_triples, Error, HierarchyDef,
+    Result, Status,
 };
 
 /// A mesh hierarchy: level 0 is the coarsest, level `num_levels() - 1` the user's mesh.
 /// Coarse levels come from quadric edge collapse with probabilistic quadrics (PSQ §4.1), each
 /// with the shell prolongation to the finest level ([`prolong`](Self::prolong), PSQ eq. 9).
+///
+/// A solid's hierarchy ([`is_solid`](Self::is_solid); VPD §3.1.2) holds a tet mesh per level
+/// instead: build one with [`from_tets`](Self::from_tets),
+/// [`from_closed_surface`](Self::from_closed_surface) or
+/// [`solid_from_file`](Self::solid_from_file). Each coarse level is the tetrahedralization
+/// of the next finer level's decimated boundary, and each finer level's vertices are bound to
+/// the coarser level's tets (barycentric weights; VPD §3.3); levels share no vertices. Its
+/// [`rest_positions`](Self::rest_positions) include the interior vertices,
+/// [`faces`](Self::faces) are the boundary faces over them and [`tets`](Self::tets) the tets.
+/// [`save`](Self::save) and [`num_expansion_batches`](Self::num_expansion_batches) apply to
+/// shells only ([`Status::Unsupported`]).
 ///
 /// Owns a C `ps_hierarchy`, destroyed on drop. [`Simulation`](crate::Simulation)s borrow
 /// it, so it cannot be dropped (or moved) while one exists.
@@ -60,23 +71,20 @@ impl Hierarchy {
         vertices: &[[f64; 3]],
         faces: &[[i32; 3]],
     ) -> Result<Hierarchy> {
-        check_version()?;
-        let raw_def = def.to_raw()?;
-        let mut out = ptr::null_mut();
-        // SAFETY: [[f64; 3]] / [[i32; 3]] are 3n consecutive values; every pointer is valid
-        // for the call, which copies what it reads.
-        let status = unsafe {
-            sys::ps_hierarchy_create(
-                &raw_def,
-                vertices.as_ptr().cast::<f64>(),
-                vertices.len(),
-                faces.as_ptr().cast::<i32>(),
-                faces.len(),
-                &mut out,
-            )
-        };
-        check_thread(status)?;
-        Hierarchy::from_created(out)
+        Hierarchy::created_by(def, |raw_def, out| {
+            // SAFETY: [[f64; 3]] / [[i32; 3]] are 3n consecutive values; every pointer is valid
+            // for the call, which copies what it reads.
+            unsafe {
+                sys::ps_hierarchy_create(
+                    raw_def,
+                    vertices.as_ptr().cast::<f64>(),
+                    vertices.len(),
+                    faces.as_ptr().cast::<i32>(),
+                    faces.len(),
+                    out,
+                )
+            }
+        })
     }
 
     /// As [`from_mesh`](Self::from_mesh), from flat row-major arrays: `vertices` holds
@@ -102,15 +110,116 @@ impl Hierarchy {
     /// # Errors
     /// As `from_file`, and as [`from_mesh_with`](Self::from_mesh_with) for the levels.
     pub fn from_file_with(def: &HierarchyDef, path: impl AsRef<Path>) -> Result<Hierarchy> {
-        check_version()?;
-        let raw_def = def.to_raw()?;
         let path = c_path(path.as_ref())?;
-        let mut out = ptr::null_mut();
         // SAFETY: def and path are valid for the call; out receives an owned handle.
-        let status =
-            unsafe { sys::ps_hierarchy_create_from_file(&raw_def, path.as_ptr(), &mut out) };
-        check_thread(status)?;
-        Hierarchy::from_created(out)
+        Hierarchy::created_by(def, |raw_def, out| unsafe {
+            sys::ps_hierarchy_create_from_file(raw_def, path.as_ptr(), out)
+        })
+    }
+
+    /// Builds a single-level solid's hierarchy from a tet mesh: `vertices` (n × 3) positions in
+    /// m and `tets` (k × 4) vertex indices, each tet positively oriented
+    /// ((x1 − x0)·((x2 − x0) × (x3 − x0)) > 0). Both are copied.
+    ///
+    /// # Errors
+    /// [`Status::InvalidMesh`] naming the first offender (non-finite coordinate, index out of
+    /// range, inverted or degenerate tet, duplicate tets, a boundary that is not a closed
+    /// manifold, empty mesh); [`Status::VersionMismatch`] if the library is too old for these
+    /// bindings.
+    pub fn from_tets(vertices: &[[f64; 3]], tets: &[[i32; 4]]) -> Result<Hierarchy> {
+        Hierarchy::from_tets_with(&HierarchyDef::default(), vertices, tets)
+    }
+
+    /// As [`from_tets`](Self::from_tets), with levels described by `def`: its
+    /// `coarse_vertex_counts` are the boundary vertex counts of the coarser levels' decimated
+    /// surfaces (distinct, each at least 4 and below the finest boundary's), each then
+    /// tetrahedralized with `def.tet_size_factor`. `def.pinned_vertices` and
+    /// `def.contact_offset` do not apply to solids' coarse levels.
+    ///
+    /// # Errors
+    /// As `from_tets`; [`Status::InvalidArgument`] for bad vertex counts or size factor.
+    pub fn from_tets_with(
+        def: &HierarchyDef,
+        vertices: &[[f64; 3]],
+        tets: &[[i32; 4]],
+    ) -> Result<Hierarchy> {
+        Hierarchy::created_by(def, |raw_def, out| {
+            // SAFETY: [[f64; 3]] / [[i32; 4]] are 3n / 4k consecutive values; every pointer is
+            // valid for the call, which copies what it reads.
+            unsafe {
+                sys::ps_hierarchy_create_solid(
+                    raw_def,
+                    vertices.as_ptr().cast::<f64>(),
+                    vertices.len(),
+                    tets.as_ptr().cast::<i32>(),
+                    tets.len(),
+                    out,
+                )
+            }
+        })
+    }
+
+    /// Builds a single-level solid's hierarchy from the solid a closed triangle surface bounds
+    /// (`vertices` in m, `faces` counter-clockwise seen from outside), tetrahedralized by CGAL
+    /// Mesh_3 with the default cell size (the bounding-box diagonal / 20); the boundary then
+    /// lies on the surface, its vertices resampled.
+    ///
+    /// # Errors
+    /// [`Status::InvalidMesh`] for a surface that is not valid, not closed or that intersects
+    /// itself, naming the problem.
+    pub fn from_closed_surface(vertices: &[[f64; 3]], faces: &[[i32; 3]]) -> Result<Hierarchy> {
+        Hierarchy::from_closed_surface_with(&HierarchyDef::default(), vertices, faces)
+    }
+
+    /// As [`from_closed_surface`](Self::from_closed_surface), with the finest level's cell size
+    /// `def.tet_cell_size` and coarser levels as in [`from_tets_with`](Self::from_tets_with).
+    ///
+    /// # Errors
+    /// As `from_closed_surface`; [`Status::InvalidArgument`] for a bad cell size, size factor
+    /// or vertex counts.
+    pub fn from_closed_surface_with(
+        def: &HierarchyDef,
+        vertices: &[[f64; 3]],
+        faces: &[[i32; 3]],
+    ) -> Result<Hierarchy> {
+        Hierarchy::created_by(def, |raw_def, out| {
+            // SAFETY: as in from_mesh_with.
+            unsafe {
+                sys::ps_hierarchy_create_solid_from_surface(
+                    raw_def,
+                    vertices.as_ptr().cast::<f64>(),
+                    vertices.len(),
+                    faces.as_ptr().cast::<i32>(),
+                    faces.len(),
+                    out,
+                )
+            }
+        })
+    }
+
+    /// Builds a single-level solid's hierarchy from a file, the format from the extension: a
+    /// tet mesh (Medit `.mesh`, Gmsh `.msh` v2/v4 ASCII, TetGen `.node`/`.ele`) as in
+    /// [`from_tets`](Self::from_tets), or a closed surface (`.obj`, `.off`, `.ply`) as in
+    /// [`from_closed_surface`](Self::from_closed_surface).
+    ///
+    /// # Errors
+    /// [`Status::Io`] naming the path if it cannot be read; [`Status::InvalidMesh`] as for
+    /// `from_tets` or `from_closed_surface`.
+    pub fn solid_from_file(path: impl AsRef<Path>) -> Result<Hierarchy> {
+        Hierarchy::solid_from_file_with(&HierarchyDef::default(), path)
+    }
+
+    /// As [`solid_from_file`](Self::solid_from_file), with levels (and a surface's cell size)
+    /// described by `def`.
+    ///
+    /// # Errors
+    /// As `solid_from_file`, and as [`from_tets_with`](Self::from_tets_with) for the levels.
+    pub fn solid_from_file_with(def: &HierarchyDef, path: impl AsRef<Path>) -> Result<Hierarchy> {
+        let path = c_path(path.as_ref())?;
+        // SAFETY: def and path are valid for the call; out receives an owned handle.
+        Hierarchy::created_by(def, |raw_def, out| unsafe {
+            sys::ps_hierarchy_create_solid_from_file(raw_def, path.as_ptr(), out)
+        })
     }
 
     /// Loads a hierarchy written by [`save`](Self::save) or `progsim hierarchy`.
@@ -131,7 +240,8 @@ impl Hierarchy {
     /// Writes the hierarchy to `path`, so that decimation is paid once.
     ///
     /// # Errors
-    /// [`Status::Io`] naming the path if it cannot be written.
+    /// [`Status::Io`] naming the path if it cannot be written; [`Status::Unsupported`] for a
+    /// solid's hierarchy (shells only).
     pub fn save(&self, path: impl AsRef<Path>) -> Result<()> {
         let raw = self.handle()?;
         let path = c_path(path.as_ref())?;
@@ -141,7 +251,9 @@ impl Hierarchy {
     }
 
     /// Positions of `level` (one `[x, y, z]` per vertex, m) prolonged to the finest level by
-    /// the shell prolongation x = U x_l + a(x_l) (PSQ eq. 9).
+    /// the shell prolongation x = U x_l + a(x_l) (PSQ eq. 9). On a solid's hierarchy: the
+    /// product of the barycentric prolongations W of the levels above (VPD §3.3), which
+    /// carries affine maps of the coarse solid over exactly.
     ///
     /// # Errors
     /// [`Status::OutOfRange`] if the level does not exist; [`Status::InvalidArgument`] if
@@ -171,7 +283,8 @@ impl Hierarchy {
     /// (PSQ §4.4.4).
     ///
     /// # Errors
-    /// [`Status::OutOfRange`] for a level that does not exist or is the finest.
+    /// [`Status::OutOfRange`] for a level that does not exist or is the finest;
+    /// [`Status::Unsupported`] for a solid's hierarchy (shells only).
     pub fn num_expansion_batches(&self, level: usize) -> Result<usize> {
         let raw = self.handle()?;
         let level = c_level(level)?;
@@ -180,6 +293,19 @@ impl Hierarchy {
         let status = unsafe { sys::ps_hierarchy_num_expansion_batches(raw, level, &mut batches) };
         self.check(status)?;
         Ok(crate::count_from(batches))
+    }
+
+    /// Runs a `ps_hierarchy_create*` call with `def` (checked and converted first) and takes
+    /// ownership of the handle it creates.
+    fn created_by(
+        def: &HierarchyDef,
+        create: impl FnOnce(*const sys::ps_hierarchy_def, *mut *mut sys::ps_hierarchy) -> i32,
+    ) -> Result<Hierarchy> {
+        check_version()?;
+        let raw_def = def.to_raw()?;
+        let mut out = ptr::null_mut();
+        check_thread(create(&raw_def, &mut out))?;
+        Hierarchy::from_created(out)
     }
 
     /// Takes ownership of a freshly created handle.
@@ -220,7 +346,21 @@ impl Hierarchy {
         crate::count_from(levels)
     }
 
-    /// The vertex and face counts of `level`, as `(num_vertices, num_faces)`.
+    /// Whether this is a solid's (tet) hierarchy rather than a shell's.
+    ///
+    /// # Panics
+    /// Inside a progress closure (the C library forbids calls from callbacks).
+    pub fn is_solid(&self) -> bool {
+        let raw = self.handle().unwrap_or_else(|error| panic!("{error}"));
+        let mut solid = 0;
+        // SAFETY: live handle, valid out-pointer.
+        let status = unsafe { sys::ps_hierarchy_is_solid(raw, &mut solid) };
+        self.check(status).expect("ps_hierarchy_is_solid fails only on NULL arguments");
+        solid != 0
+    }
+
+    /// The vertex and face counts of `level`, as `(num_vertices, num_faces)`; for a solid, its
+    /// vertices (interior ones included) and boundary faces.
     ///
     /// # Errors
     /// [`Status::OutOfRange`] if the level does not exist.
@@ -250,7 +390,8 @@ impl Hierarchy {
         })
     }
 
-    /// The faces of `level`, one `[i, j, k]` triple of vertex indices per triangle.
+    /// The faces of `level`, one `[i, j, k]` triple of vertex indices per triangle (a solid's:
+    /// its boundary faces).
     ///
     /// # Errors
     /// [`Status::OutOfRange`] if the level does not exist.
@@ -260,6 +401,22 @@ impl Hierarchy {
         read_triples(|out, capacity, count| {
             // SAFETY: live handle; out is NULL or valid for `capacity` indices.
             let status = unsafe { sys::ps_hierarchy_get_faces(raw, level, out, capacity, count) };
+            self.check(status)
+        })
+    }
+
+    /// The tets of a solid's `level`, one positively oriented `[i, j, k, l]` of indices into
+    /// the level's vertices ([`rest_positions`](Self::rest_positions)) per tet; empty for a
+    /// shell's hierarchy.
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the level does not exist.
+    pub fn tets(&self, level: usize) -> Result<Vec<[i32; 4]>> {
+        let raw = self.handle()?;
+        let level = c_level(level)?;
+        read_rows(|out, capacity, count| {
+            // SAFETY: live handle; out is NULL or valid for `capacity` indices.
+            let status = unsafe { sys::ps_hierarchy_get_tets(raw, level, out, capacity, count) };
             self.check(status)
         })
     }

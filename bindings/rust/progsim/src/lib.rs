@@ -1,10 +1,10 @@
 //! Safe Rust bindings to progsim, a library for progressive (level-of-detail) simulation of
 //! cloth and thin shells.
 //!
-//! A [`Hierarchy`] holds a triangle mesh (and, in later versions, its coarser levels); a
-//! [`Simulation`] runs on it: preview steps at the current level, then refinement to finer
-//! levels. Scenes described in JSON give a simulation that owns its hierarchy
-//! ([`Simulation::from_scene`]).
+//! A [`Hierarchy`] holds a triangle mesh and its coarser levels, or a solid's tet mesh and
+//! its coarser tet levels ([`Hierarchy::from_tets`]); a [`Simulation`] runs on it: preview
+//! steps at the current level, then refinement to finer levels. Scenes described in JSON give
+//! a simulation that owns its hierarchy ([`Simulation::from_scene`]).
 //!
 //! Conventions (those of the C ABI):
 //! - Units are SI: metres, seconds, kilograms, pascals, radians.
@@ -217,19 +217,26 @@ pub(crate) fn c_level(level: usize) -> Result<i32> {
 /// Reads a size-then-fill array of `(n × 3)` values: `call(out, capacity, count)` is
 /// called once with `out` NULL to learn `count` = 3n, then with a buffer of that size.
 pub(crate) fn read_triples<T: Copy + Default>(
-    mut call: impl FnMut(*mut T, usize, &mut usize) -> Result<()>,
+    call: impl FnMut(*mut T, usize, &mut usize) -> Result<()>,
 ) -> Result<Vec<[T; 3]>> {
+    read_rows(call)
+}
+
+/// Reads a size-then-fill array of `(n × N)` values, as [`read_triples`] for rows of `N`.
+pub(crate) fn read_rows<T: Copy + Default, const N: usize>(
+    mut call: impl FnMut(*mut T, usize, &mut usize) -> Result<()>,
+) -> Result<Vec<[T; N]>> {
     let mut count = 0usize;
     call(std::ptr::null_mut(), 0, &mut count)?;
-    if count % 3 != 0 {
+    if count % N != 0 {
         return Err(Error::new(
             Status::Internal,
-            format!("the library reported {count} values, not a multiple of 3"),
+            format!("the library reported {count} values, not a multiple of {N}"),
         ));
     }
-    let mut out = vec![[T::default(); 3]; count / 3];
+    let mut out = vec![[T::default(); N]; count / N];
     let mut written = 0usize;
-    // [T; 3] has the layout of three consecutive T, so out is `count` consecutive T.
+    // [T; N] has the layout of N consecutive T, so out is `count` consecutive T.
     call(out.as_mut_ptr().cast::<T>(), count, &mut written)?;
     if written != count {
         return Err(Error::new(

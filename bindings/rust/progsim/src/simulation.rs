@@ -62,9 +62,20 @@ unsafe impl Send for Simulation<'_> {}
 impl<'h> Simulation<'h> {
     /// Creates a simulation of `hierarchy` as described by `def`, at level 0 and at rest.
     ///
+    /// On a solid's hierarchy ([`Hierarchy::is_solid`]) the body is the finest tet mesh
+    /// (`youngs_modulus`, `poisson_ratio` and `density` its material), and `def.effects` must
+    /// include [`Effect::Elasticity`](crate::Effect::Elasticity) and no shell effect
+    /// (membrane, bending, pressure, strain limit, wind): set them, e.g.
+    /// `effects: Effect::Elasticity | Effect::Gravity`. Several levels animate it with VPD
+    /// ([`SimulationKind::VolumetricDynamics`](crate::SimulationKind)) in
+    /// [`Mode::Dynamic`](crate::Mode).
+    ///
     /// # Errors
     /// [`Status::InvalidArgument`] for a parameter out of range (naming it);
-    /// [`Status::InvalidScene`] for a pinned vertex out of range (naming it).
+    /// [`Status::InvalidScene`] for a pinned vertex out of range (naming it), or on a solid's
+    /// hierarchy for effects without elasticity or with a shell effect (naming it);
+    /// [`Status::Unsupported`] for a solid's hierarchy of several levels in
+    /// [`Mode::Quasistatic`](crate::Mode) or with pinned vertices.
     pub fn new(hierarchy: &'h Hierarchy, def: &SimulationDef) -> Result<Simulation<'h>> {
         let raw_def = def.to_raw();
         let mut out = ptr::null_mut();
@@ -528,10 +539,11 @@ impl<'h> Simulation<'h> {
     /// Refines the current level l to l + 1 with the prolongation P^l_{l+1} (PSQ eq. 7), so
     /// that later steps run on the finer level (previews below the finest level).
     ///
-    /// A progressive animation ([`SimulationKind::ProgressiveDynamics`](crate::SimulationKind))
-    /// instead animates level l + 1 over every previewed step (PD eqs. 5–6), each step
-    /// predicted from level l's frames ([`prediction`](Self::prediction)); its frames are then
-    /// read with [`frame_positions`](Self::frame_positions).
+    /// A progressive animation ([`SimulationKind::ProgressiveDynamics`](crate::SimulationKind),
+    /// or `VolumetricDynamics` for a solid) instead animates level l + 1 over every previewed
+    /// step (PD eqs. 5–6), each step predicted from level l's frames
+    /// ([`prediction`](Self::prediction)); its frames are then read with
+    /// [`frame_positions`](Self::frame_positions).
     ///
     /// # Errors
     /// [`Status::OutOfRange`] at the finest level; [`Status::Intersecting`] when, with contact,
