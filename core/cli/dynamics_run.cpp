@@ -181,10 +181,10 @@ int run_progressive_dynamics(Scene scene, const RunCommand& opt) {
   if (opt.preview_only) summary["preview_only"] = true;
   std::ofstream(dir / "summary.json") << summary.dump(2) << "\n";  // the last file written
   std::printf(
-      "%s: progressive dynamics, %d steps of %.3g s previewed on level 0, %d levels, %.3g s "
+      "%s: %s, %d steps of %.3g s previewed on level 0, %d levels, %.3g s "
       "(CoM dev.: how far the level's centre of mass moved away from the preview's since frame 0)\n"
       "%s%s",
-      s.name.c_str(), steps, s.time_step, pd.finest() + 1, total.seconds(),
+      s.name.c_str(), pd.method(), steps, s.time_step, pd.finest() + 1, total.seconds(),
       dynamic_level_table(rows).c_str(), outcome_line(outcome).c_str());
   std::printf(
       "results: %s (level_*/frame_*.obj: each level's frames on its own mesh%s; steps.jsonl; "

@@ -10,6 +10,23 @@
 namespace progsim {
 namespace {
 
+/// Throws unless a handle's or load's `region` selects vertices on every level: the levels share
+/// no vertices, so only a box says which of a coarse level's are meant.
+void check_level_regions(const std::optional<VertexBox>& region, const TetHierarchy& hierarchy,
+                         const std::string& scene_name, const char* kind, std::size_t index) {
+  const std::string what = std::string(kind) + "[" + std::to_string(index) + "]";
+  if (!region)
+    fail(Status::unsupported, scene_name + ": " + what +
+                                  " lists vertices of the finest mesh, which coarse tet levels "
+                                  "do not share: select them by a 'box' instead");
+  for (int level = 0; level + 1 < hierarchy.num_levels(); ++level)
+    if (region->select(hierarchy.levels[level].vertices).empty())
+      fail(Status::invalid_scene, scene_name + ": " + what + ".box holds no vertex of tet level " +
+                                      std::to_string(level) +
+                                      " (coarse boundaries may lie up to an edge inside the "
+                                      "finest's: enlarge the box)");
+}
+
 /// Throws unless the driver can animate `scene` over `hierarchy`.
 void check_volumetric_scene(const Scene& scene, const TetHierarchy& hierarchy) {
   validate_scene(scene);
@@ -21,10 +38,6 @@ void check_volumetric_scene(const Scene& scene, const TetHierarchy& hierarchy) {
     fail(Status::unsupported, scene.name +
                                   ": volumetric progressive dynamics animates one "
                                   "volumetric body so far");
-  if (!scene.handles.empty() || !scene.loads.empty())
-    fail(Status::unsupported, scene.name +
-                                  ": handles and loads select vertices of the finest "
-                                  "mesh, which coarse tet levels do not share yet");
   if (hierarchy.levels.size() < 2 || hierarchy.to_finer.size() + 1 != hierarchy.levels.size())
     fail(Status::invalid_argument, scene.name +
                                        ": a tet hierarchy needs at least two levels and "
@@ -34,6 +47,16 @@ void check_volumetric_scene(const Scene& scene, const TetHierarchy& hierarchy) {
   if (!same_array(finest.tets, body.tets) || !same_array(finest.vertices, body.mesh.vertices))
     fail(Status::invalid_argument,
          scene.name + ": the hierarchy's finest level is not the body's mesh");
+  for (std::size_t i = 0; i < scene.handles.size(); ++i)
+    check_level_regions(scene.handles[i].region, hierarchy, scene.name, "handles", i);
+  for (std::size_t i = 0; i < scene.loads.size(); ++i)
+    check_level_regions(scene.loads[i].region, hierarchy, scene.name, "loads", i);
+}
+
+/// `selections` (handles or loads) with the vertices their boxes hold on `vertices`.
+template <class Selection>
+void select_on_level(std::vector<Selection>& selections, const Positions& vertices) {
+  for (Selection& s : selections) s.vertices = s.region->select(vertices);
 }
 
 /// W as a level transfer: positions and velocities alike (VPD §3.3: P = W, V = W).
@@ -85,6 +108,8 @@ Scene VolumetricDynamics::level_scene(const Scene& scene, int level) const {
   body.mesh.vertices = mesh.vertices;
   body.mesh.faces = surface_faces_.at(level);
   body.tets = mesh.tets;
+  select_on_level(s.handles, mesh.vertices);  // by box: check_volumetric_scene saw them all
+  select_on_level(s.loads, mesh.vertices);
   return s;
 }
 

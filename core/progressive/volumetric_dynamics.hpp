@@ -22,9 +22,10 @@ class VolumetricDynamics final : public ProgressiveAnimation {
  public:
   /// `scene`: dynamic, one volumetric body whose mesh is `hierarchy`'s finest level. Throws
   /// Error(invalid_scene) for a quasistatic scene, Error(invalid_argument) if the hierarchy does
-  /// not match the body or has fewer than two levels, Error(unsupported) for several bodies,
-  /// handles or loads (their vertex sets have no counterpart on coarse levels yet), and as
-  /// validate_scene().
+  /// not match the body or has fewer than two levels, Error(unsupported) for several bodies or
+  /// a handle or load that lists vertices by index, Error(invalid_scene) for one whose box
+  /// holds no vertex of some level, and as validate_scene(). Handles and loads select each
+  /// level's vertices by their box (Handle::region): the levels share no vertices.
   VolumetricDynamics(Scene scene, std::shared_ptr<const TetHierarchy> hierarchy);
   ~VolumetricDynamics();
   VolumetricDynamics(const VolumetricDynamics&) = delete;
@@ -57,7 +58,8 @@ class VolumetricDynamics final : public ProgressiveAnimation {
   const TetHierarchy& hierarchy() const { return *hierarchy_; }
   std::shared_ptr<const TetHierarchy> shared_hierarchy() const { return hierarchy_; }
   const Scene& scene() const override { return scene_; }
-  /// The scene of level `level`: the scene with its body's mesh and tets replaced by the level's.
+  /// The scene of level `level`: the scene with its body's mesh and tets replaced by the level's,
+  /// and its handles' and loads' vertices those their boxes hold there.
   Scene level_scene(int level) const { return level_scene(scene_, level); }
   /// The boundary faces of tet level `level`.
   const Faces& surface_faces(int level) const override { return surface_faces_.at(level); }

@@ -255,6 +255,16 @@ void validate_held(const Scene& scene) {
 
 }  // namespace
 
+std::vector<int> VertexBox::select(const Positions& positions) const {
+  std::vector<int> selected;
+  for (Eigen::Index i = 0; i < positions.rows(); ++i) {
+    const Vec3 x = positions.row(i).transpose();
+    if ((x.array() >= min.array()).all() && (x.array() <= max.array()).all())
+      selected.push_back(static_cast<int>(i));
+  }
+  return selected;
+}
+
 void validate_motion(const HandleMotion& m, const std::string& where, Status status) {
   if (!m.velocity.allFinite() || !m.center.allFinite() || !m.offset.allFinite() ||
       !m.axis.allFinite() || !std::isfinite(m.angular_velocity))

@@ -1,6 +1,7 @@
 #pragma once
 /// @file A scene: bodies, materials, handles, effects and solver settings. Parsed from JSON
 /// (scene_json.hpp) or built in code; validated before anything is simulated.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,15 @@ enum HandleAxis : unsigned {
   handle_axes_all = 7u,  ///< a clamp
 };
 
+/// An axis-aligned box of world positions (m) that selects vertices (a scene's "box").
+struct VertexBox {
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Zero();
+
+  /// Indices of the rows of `positions` inside the box, boundary included, ascending.
+  std::vector<int> select(const Positions& positions) const;
+};
+
 /// Vertices of one body held on a scripted trajectory (Dirichlet boundary condition).
 struct Handle {
   int body = 0;               ///< index into Scene::bodies
@@ -128,6 +138,9 @@ struct Handle {
   /// The world coordinates the handle prescribes (HandleAxis bits, at least one); the others
   /// are free: a roller or a symmetry plane. The script moves only the prescribed coordinates.
   unsigned axes = handle_axes_all;
+  /// The box that selected `vertices` when a box alone did: a level with other vertices (VPD's
+  /// coarse tet levels) selects its own by it. Empty for vertices listed by index.
+  std::optional<VertexBox> region;
 };
 
 /// How a load's total force is spread over its vertex group.
@@ -149,6 +162,7 @@ struct Load {
   /// force (per_vertex: equally); 0: none.
   double moment = 0.0;
   double ramp = 0.0;  ///< s; the load grows linearly from 0 over this time (0: at once)
+  std::optional<VertexBox> region;  ///< as Handle::region
 };
 
 /// How the proxy energy of a coarse level reaches the finest mesh (PSQ §4.3).

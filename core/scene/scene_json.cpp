@@ -286,17 +286,10 @@ int body_index(const Json& j, const std::vector<Body>& bodies, const std::string
   scene_error(where, "names no body (use a body's name or index)");
 }
 
-std::vector<int> box_selection(const Json& j, const Positions& p, const std::string& where) {
+VertexBox vertex_box(const Json& j, const std::string& where) {
   expect_keys(j, where, {"min", "max"});
-  const Vec3 lo = vec3(require(j, "min", where), where + ".min");
-  const Vec3 hi = vec3(require(j, "max", where), where + ".max");
-  std::vector<int> selected;
-  for (Eigen::Index i = 0; i < p.rows(); ++i) {
-    const Vec3 x = p.row(i).transpose();
-    if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all())
-      selected.push_back(static_cast<int>(i));
-  }
-  return selected;
+  return {vec3(require(j, "min", where), where + ".min"),
+          vec3(require(j, "max", where), where + ".max")};
 }
 
 MotionKeyframe motion_keyframe(const Json& j, const std::string& where) {
@@ -365,6 +358,7 @@ unsigned handle_axes(const Json& j, const std::string& where) {
 struct VertexSelection {
   int body = 0;
   std::vector<int> vertices;
+  std::optional<VertexBox> region;  ///< set when a box alone selected them
 };
 
 /// j's "body" (name or index) and the vertices its "vertices" list and its "box" select.
@@ -381,8 +375,9 @@ VertexSelection vertex_selection(const Json& j, const std::vector<Body>& bodies,
       s.vertices.push_back(integer(v[k], where + ".vertices[" + std::to_string(k) + "]"));
   }
   if (j.contains("box")) {
-    const std::vector<int> boxed =
-        box_selection(j.at("box"), bodies[s.body].mesh.vertices, where + ".box");
+    const VertexBox box = vertex_box(j.at("box"), where + ".box");
+    const std::vector<int> boxed = box.select(bodies[s.body].mesh.vertices);
+    if (!j.contains("vertices")) s.region = box;
     s.vertices.insert(s.vertices.end(), boxed.begin(), boxed.end());
   }
   if (s.vertices.empty())
@@ -396,6 +391,7 @@ Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string&
   VertexSelection selection = vertex_selection(j, bodies, where);
   h.body = selection.body;
   h.vertices = std::move(selection.vertices);
+  h.region = selection.region;
   if (j.contains("motion")) h.motion = motion(j.at("motion"), where + ".motion");
   if (j.contains("axes")) h.axes = handle_axes(j.at("axes"), where + ".axes");
   return h;
@@ -411,6 +407,7 @@ Load load(const Json& j, const std::vector<Body>& bodies, const std::string& whe
   VertexSelection selection = vertex_selection(j, bodies, where);
   l.body = selection.body;
   l.vertices = std::move(selection.vertices);
+  l.region = selection.region;
   l.force = vec3_or(j, "force", Vec3::Zero(), where);
   l.distribution = choice<LoadDistribution>(j, "distribution", where,
                                             {{"mass", LoadDistribution::mass},

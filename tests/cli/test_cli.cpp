@@ -823,3 +823,35 @@ TEST_F(Cli, AVolumetricSceneWithLevelsRunsVolumetricProgressiveDynamics) {
   EXPECT_TRUE(fs::exists(out / "level_2" / "frame_00010.obj"));
   EXPECT_EQ(read_log(out).size(), 30u);  // 10 steps on each of 3 levels
 }
+
+TEST_F(Cli, TheTwistedBarsEndsTurnAsScriptedOnEveryVpdLevel) {
+  // Each level's handle boxes (0.24 ≤ |x| ≤ 0.26) hold that level's own end vertices (the levels
+  // share none; coarse ends lie a little inside the finest's): after 10 steps of 0.02 s the end
+  // at x = −0.25 has turned by +0.2π about x and the end at 0.25 by −0.2π, on every level.
+  const fs::path out = dir_ / "twist";
+  const CommandResult r =
+      run_cli("run " + std::string(PROGSIM_SOURCE_DIR) +
+              "/scenes/vpd_twisted_bar.json --steps 10 --out " + out.string() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_summary(out).at("method"), "volumetric progressive dynamics");
+  for (int level = 0; level < 3; ++level) {
+    const fs::path frames = out / ("level_" + std::to_string(level));
+    const progsim::TriangleMesh rest = progsim::read_mesh((frames / "frame_00000.obj").string());
+    const progsim::TriangleMesh now = progsim::read_mesh((frames / "frame_00010.obj").string());
+    int ends = 0;
+    double worst = 0.0;
+    for (Eigen::Index v = 0; v < rest.vertices.rows(); ++v) {
+      const double x = rest.vertices(v, 0);
+      if (std::abs(std::abs(x) - 0.25) > 0.01) continue;  // the scene's handle boxes
+      ++ends;
+      worst = std::max(worst, std::abs(now.vertices(v, 0) - x));
+      if (rest.vertices.row(v).tail<2>().norm() < 1e-9) continue;  // on the axis: no angle
+      const double turned = std::atan2(now.vertices(v, 2), now.vertices(v, 1)) -
+                            std::atan2(rest.vertices(v, 2), rest.vertices(v, 1));
+      const double expected = (x < 0 ? 0.2 : -0.2) * M_PI;
+      worst = std::max(worst, std::abs(std::remainder(turned - expected, 2 * M_PI)));
+    }
+    EXPECT_GE(ends, 8) << "level " << level;
+    EXPECT_LT(worst, 1e-6) << "level " << level;
+  }
+}

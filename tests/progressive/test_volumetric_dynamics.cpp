@@ -5,8 +5,10 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <algorithm>
 #include <iostream>
 #include <memory>
+#include <string>
 
 #include "common/error.hpp"
 #include "hierarchy/tet_prolongation.hpp"
@@ -21,19 +23,25 @@ namespace {
 
 const Vec3 kSize(0.2, 0.2, 0.2);
 
-/// Boxes of 2³, 3³ and 5³ cells (their vertices do not nest), moved by `shift`, bound by W.
-std::shared_ptr<const TetHierarchy> box_levels(const Vec3& shift) {
+/// The levels `meshes` bound by W.
+std::shared_ptr<const TetHierarchy> bound_levels(std::vector<TetMesh> meshes) {
   auto h = std::make_shared<TetHierarchy>();
-  for (int n : {2, 3, 5}) {
-    TetMesh m = make_tet_box(kSize, n, n, n);
-    m.vertices.rowwise() += shift.transpose();
-    h->levels.push_back(std::move(m));
-  }
+  h->levels = std::move(meshes);
   for (std::size_t l = 0; l + 1 < h->levels.size(); ++l) {
     h->bindings.push_back(bind_to_tets(h->levels[l], h->levels[l + 1]));
     h->to_finer.push_back(tet_prolongation_matrix(h->bindings.back(), h->levels[l]));
   }
   return h;
+}
+
+/// Boxes of 2³, 3³ and 5³ cells (their vertices do not nest), moved by `shift`, bound by W.
+std::shared_ptr<const TetHierarchy> box_levels(const Vec3& shift) {
+  std::vector<TetMesh> meshes;
+  for (int n : {2, 3, 5}) {
+    meshes.push_back(make_tet_box(kSize, n, n, n));
+    meshes.back().vertices.rowwise() += shift.transpose();
+  }
+  return bound_levels(std::move(meshes));
 }
 
 Scene jelly_scene(const TetMesh& finest, double duration) {
@@ -162,11 +170,66 @@ TEST(VolumetricDynamics, MisuseIsRefusedNamingIt) {
     EXPECT_EQ(e.status(), Status::invalid_argument);
   }
   Scene handled = scene;
-  handled.handles.push_back(Handle{0, {0}, {}, handle_axes_all});
+  Handle listed;  // by index: no counterpart on the coarse levels
+  listed.vertices = {0};
+  handled.handles.push_back(listed);
   try {
     VolumetricDynamics(handled, levels);
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.status(), Status::unsupported);
+  }
+}
+
+TEST(VolumetricDynamics, AHandleBoxClampsItsVerticesOnEveryLevel) {
+  // A 0.4 m bar centred at the origin, of 4, 8 and 12 cells along x (vertices at its ends on
+  // every level, elsewhere not nested), clamped at x = −0.2 by a box, sagging under gravity.
+  const Vec3 bar(0.4, 0.1, 0.1);
+  const auto levels = bound_levels(
+      {make_tet_box(bar, 4, 1, 1), make_tet_box(bar, 8, 2, 2), make_tet_box(bar, 12, 3, 3)});
+  Scene scene = jelly_scene(levels->levels.back(), 0.1);
+  scene.effects.enable(Effect::gravity);
+  scene.bodies[0].material.youngs_modulus = 1e5;
+  Handle clamp;
+  clamp.region = VertexBox{Vec3(-0.2 - 1e-9, -1.0, -1.0), Vec3(-0.2 + 1e-9, 1.0, 1.0)};
+  clamp.vertices = clamp.region->select(scene.bodies[0].mesh.vertices);
+  scene.handles.push_back(clamp);
+  VolumetricDynamics vpd(scene, levels);
+  for (int t = 0; t < 10; ++t) vpd.step_preview();
+  vpd.refine();
+  vpd.refine();
+  const int face_vertices[] = {2 * 2, 3 * 3, 4 * 4};
+  Positions x, v;
+  for (int level = 0; level <= vpd.finest(); ++level) {
+    const TetMesh& mesh = levels->levels[level];
+    const std::vector<int> held = vpd.level_scene(level).handles[0].vertices;
+    ASSERT_EQ(static_cast<int>(held.size()), face_vertices[level]) << "level " << level;
+    for (int frame = 0; frame < vpd.num_frames(level); ++frame) {
+      vpd.read_frame(level, frame, x, v);
+      for (int i : held)
+        ASSERT_EQ((x.row(i) - mesh.vertices.row(i)).norm(), 0.0) << "level " << level;
+    }
+    // the free end (x = 0.2) sags along gravity (−y)
+    double tip_drop = 0.0;
+    for (int i = 0; i < mesh.num_vertices(); ++i)
+      if (mesh.vertices(i, 0) > bar.x() / 2 - 1e-9)
+        tip_drop = std::max(tip_drop, mesh.vertices(i, 1) - x(i, 1));
+    EXPECT_GT(tip_drop, 1e-3) << "level " << level;
+    EXPECT_EQ(vpd.record(level).converged_steps, 10) << "level " << level;
+  }
+  // A box holding finest vertices (x = −0.133) but none of level 0's (x = −0.2, −0.1, …) nor
+  // level 1's (−0.15, −0.1, …) is refused, naming the coarsest.
+  Scene gap = scene;
+  gap.handles[0].region = VertexBox{Vec3(-0.14, -1.0, -1.0), Vec3(-0.13, 1.0, 1.0)};
+  gap.handles[0].vertices = gap.handles[0].region->select(scene.bodies[0].mesh.vertices);
+  ASSERT_FALSE(gap.handles[0].vertices.empty());
+  try {
+    VolumetricDynamics(gap, levels);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::invalid_scene);
+    EXPECT_NE(std::string(e.what()).find("handles[0].box holds no vertex of tet level 0"),
+              std::string::npos)
+        << e.what();
   }
 }

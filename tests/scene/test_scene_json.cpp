@@ -48,8 +48,8 @@ TEST(SceneJson, BundledScenesParse) {
   // by its closed surface's balanced pressure, the drape by its centre handle and contact).
   for (const char* name :
        {"hanging_cloth", "curved_shell", "balloon", "cloth_on_sphere", "twisted_cloth",
-        "psq_balloon", "psq_can_crush", "psq_cloth_on_sphere", "psq_plate_buckling", "psq_twist",
-        "pd_drape", "pd_cube_on_sheet", "pd_spin_cycle"}) {
+        "vpd_twisted_bar", "vpd_jelly_drop", "psq_balloon", "psq_can_crush", "psq_cloth_on_sphere",
+        "psq_plate_buckling", "psq_twist", "pd_drape", "pd_cube_on_sheet", "pd_spin_cycle"}) {
     const Scene scene =
         load_scene_file(std::string(PROGSIM_SOURCE_DIR) + "/scenes/" + name + ".json");
     EXPECT_EQ(scene.name, name);
