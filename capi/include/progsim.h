@@ -734,6 +734,18 @@ PS_API int32_t ps_sim_set_handle_keyframes(ps_sim* sim, int32_t handle, const do
 PS_API int32_t ps_sim_add_handle(ps_sim* sim, int32_t body, const int32_t* vertices,
                                  size_t num_vertices, int32_t* out_index);
 
+/**
+ * Adds a handle of the vertices of body `body` inside the axis-aligned box [box_min, box_max]
+ * (m, boundary included; scene key "handles" with a "box"), otherwise as ps_sim_add_handle().
+ * On a solid's hierarchy of several levels (VPD) every level holds the vertices its box holds
+ * there, since the levels share no vertices; a box that holds none on some level is
+ * PS_ERROR_INVALID_SCENE naming the level. Errors: as ps_sim_add_handle(), and
+ * PS_ERROR_INVALID_ARGUMENT for a non-finite corner or box_min above box_max on some axis,
+ * PS_ERROR_INVALID_SCENE for a box that holds no vertex of the body; on error nothing changed.
+ */
+PS_API int32_t ps_sim_add_handle_box(ps_sim* sim, int32_t body, const double box_min[3],
+                                     const double box_max[3], int32_t* out_index);
+
 /** A collision object: a triangle mesh moved rigidly by a script, not simulated (scene key
  *  "obstacles"). Fill with ps_obstacle_def_init(), then set the mesh. */
 typedef struct ps_obstacle_def {

@@ -1,6 +1,7 @@
 // ps_sim_add_handle, ps_sim_add_obstacle and its motion, ps_sim_set_ground: the scene's
 // scripted and collision objects from code (scene keys "handles", "obstacles", "ground").
 #include <cmath>
+#include <string>
 
 #include "handles.hpp"
 #include "motion_args.hpp"
@@ -39,6 +40,30 @@ void set_obstacle_motion(ps_sim& sim, int32_t obstacle, const HandleMotion& moti
   edit_scene(sim, [&](Scene& scene) { scene.obstacles[obstacle].motion = motion; });
 }
 
+/// The box [lo, hi]; throws ApiError(PS_ERROR_INVALID_ARGUMENT) for a non-finite corner or
+/// lo above hi on some axis.
+VertexBox checked_box(const double lo[3], const double hi[3]) {
+  const char* axes = "xyz";
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(lo[k]) || !std::isfinite(hi[k]))
+      api_fail(PS_ERROR_INVALID_ARGUMENT,
+               std::string("box_min/box_max along ") + axes[k] + " is not finite");
+    if (lo[k] > hi[k])
+      api_fail(PS_ERROR_INVALID_ARGUMENT, std::string("box_min.") + axes[k] + " = " +
+                                              std::to_string(lo[k]) + " is above box_max." +
+                                              axes[k] + " = " + std::to_string(hi[k]));
+  }
+  return {Vec3(lo[0], lo[1], lo[2]), Vec3(hi[0], hi[1], hi[2])};
+}
+
+/// Rebuilds the simulation with `handle` added; its index into *out_index (nullable).
+void add_handle(ps_sim& sim, Handle handle, const char* call, int32_t* out_index) {
+  Scene scene = sim.scene;
+  scene.handles.push_back(std::move(handle));
+  rebuild_scene(sim, std::move(scene), call);
+  if (out_index) *out_index = static_cast<int32_t>(sim.scene.handles.size()) - 1;
+}
+
 }  // namespace
 }  // namespace progsim::capi
 
@@ -52,13 +77,32 @@ PS_API int32_t ps_sim_add_handle(ps_sim* sim, int32_t body, const int32_t* verti
   return guarded(error_slot(sim), "ps_sim_add_handle", [&] {
     require_idle(sim);
     if (num_vertices > 0) require(vertices, "vertices (with num_vertices > 0)");
-    Scene scene = sim->scene;
     Handle handle;
     handle.body = body;
     if (num_vertices > 0) handle.vertices.assign(vertices, vertices + num_vertices);
-    scene.handles.push_back(handle);
-    rebuild_scene(*sim, std::move(scene), "ps_sim_add_handle");
-    if (out_index) *out_index = static_cast<int32_t>(sim->scene.handles.size()) - 1;
+    add_handle(*sim, std::move(handle), "ps_sim_add_handle", out_index);
+  });
+}
+
+PS_API int32_t ps_sim_add_handle_box(ps_sim* sim, int32_t body, const double box_min[3],
+                                     const double box_max[3], int32_t* out_index) {
+  return guarded(error_slot(sim), "ps_sim_add_handle_box", [&] {
+    require_idle(sim);
+    require(box_min, "box_min");
+    require(box_max, "box_max");
+    const Scene& scene = sim->scene;
+    if (body < 0 || body >= static_cast<int32_t>(scene.bodies.size()))
+      api_fail(PS_ERROR_INVALID_SCENE, "body " + std::to_string(body) +
+                                           " does not exist (the scene has " +
+                                           std::to_string(scene.bodies.size()) + " bodies)");
+    Handle handle;
+    handle.body = body;
+    handle.region = checked_box(box_min, box_max);
+    handle.vertices = handle.region->select(scene.bodies[body].mesh.vertices);
+    if (handle.vertices.empty())
+      api_fail(PS_ERROR_INVALID_SCENE,
+               "the box holds no vertex of body " + std::to_string(body) + "'s mesh");
+    add_handle(*sim, std::move(handle), "ps_sim_add_handle_box", out_index);
   });
 }
 

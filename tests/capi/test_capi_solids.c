@@ -238,6 +238,51 @@ static void test_closed_surface(void) {
               PS_ERROR_INVALID_ARGUMENT, ps_last_error(), "tet_cell_size");
 }
 
+/* A handle by box on VPD: each level holds its own vertices at x = 0 in place on every frame. */
+static void test_box_handle(const ps_hierarchy* h) {
+  ps_sim_def def;
+  ps_sim_def_init(&def);
+  def.effects = PS_EFFECT_ELASTICITY | PS_EFFECT_GRAVITY;
+  def.gravity[1] = 0.0;
+  def.gravity[2] = -kGravity;
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
+  const double lo[3] = {-0.01, -1.0, -1.0}, hi[3] = {0.01, 1.0, 1.0};
+  const double inverted[3] = {0.02, 1.0, 1.0}, far[3] = {5.0, 5.0, 5.0}, farther[3] = {6, 6, 6};
+  int32_t index = -1;
+  CHECK_ERROR(ps_sim_add_handle_box(sim, 0, inverted, hi, &index), PS_ERROR_INVALID_ARGUMENT,
+              ps_sim_last_error(sim), "box_min.x");
+  CHECK_ERROR(ps_sim_add_handle_box(sim, 0, far, farther, &index), PS_ERROR_INVALID_SCENE,
+              ps_sim_last_error(sim), "holds no vertex");
+  CHECK_ERROR(ps_sim_add_handle_box(sim, 1, lo, hi, &index), PS_ERROR_INVALID_SCENE,
+              ps_sim_last_error(sim), "body 1");
+  CHECK(ps_sim_add_handle_box(sim, 0, lo, hi, &index) == PS_OK && index == 0);
+  CHECK(ps_sim_step_preview(sim, kSteps) == PS_OK && ps_sim_refine(sim) == PS_OK);
+  for (int32_t level = 0; level < 2; ++level) {
+    size_t n = 0, count = 0;
+    CHECK(ps_hierarchy_level_size(h, level, &n, NULL) == PS_OK);
+    double* rest = malloc(3 * n * sizeof(double));
+    double* x = malloc(3 * n * sizeof(double));
+    CHECK(ps_hierarchy_get_rest_positions(h, level, rest, 3 * n, &count) == PS_OK);
+    CHECK(ps_sim_get_frame_positions(sim, level, kSteps, x, 3 * n, &count) == PS_OK);
+    int held = 0;
+    double held_moved = 0.0, free_drop = 0.0;
+    for (size_t v = 0; v < n; ++v) {
+      const double drop = rest[3 * v + 2] - x[3 * v + 2];
+      if (fabs(rest[3 * v]) <= 0.01) {
+        ++held;
+        held_moved = fmax(held_moved, fabs(drop) + fabs(x[3 * v] - rest[3 * v]));
+      } else {
+        free_drop = fmax(free_drop, drop);
+      }
+    }
+    CHECK(held >= 4 && held_moved == 0.0 && free_drop > 0.0);
+    free(rest);
+    free(x);
+  }
+  ps_sim_destroy(sim);
+}
+
 /* Bad tet meshes, calls that apply to shells only, and solids' scenes that cannot be run. */
 static void test_misuse(const ps_hierarchy* h) {
   ps_hierarchy* bad = NULL;
@@ -359,6 +404,7 @@ int main(void) {
   if (h) {
     test_levels(h);
     test_animation(h);
+    test_box_handle(h);
     test_misuse(h);
     CHECK(ps_hierarchy_destroy(h) == PS_OK);
   }

@@ -313,3 +313,22 @@ def test_one_level_is_a_direct_simulation_of_the_solid():
             moved = sim.positions(0) - vertices
             assert np.abs(moved[:, :2]).max() < 1e-9
             assert np.abs(moved[:, 2] - fallen(np.array(3))).max() < 1e-8
+
+
+def test_a_handle_box_holds_each_levels_own_vertices(box):
+    with progsim.Simulation(box, gravity=(0, 0, -GRAVITY)) as sim:
+        with pytest.raises(progsim.InvalidArgumentError, match="box_min.x"):
+            sim.add_handle_box((1.0, -1, -1), (0.5, 1, 1))
+        with pytest.raises(progsim.InvalidSceneError, match="holds no vertex"):
+            sim.add_handle_box((5, 5, 5), (6, 6, 6))
+        low = BOX_VERTICES[:, 0].min()
+        assert sim.add_handle_box((low - 0.01, -1, -1), (low + 0.01, 1, 1)) == 0
+        sim.step_preview(3)
+        sim.refine()
+        for level in range(2):
+            rest = box.rest_positions(level)
+            moved = sim.positions(level) - rest
+            held = np.abs(rest[:, 0] - low) <= 0.01
+            assert held.sum() >= 4
+            assert np.abs(moved[held]).max() == 0.0
+            assert moved[~held, 2].min() < 0.0  # the rest sags

@@ -1048,6 +1048,33 @@ class Simulation(NativeObject):
         self._call(lib.ps_sim_add_handle, int32_value(body, "body"), buffer, indices.size, out)
         return int(out[0])
 
+    def add_handle_box(self, box_min: Any, box_max: Any, body: int = 0) -> int:
+        """Adds a handle of the vertices of ``body`` inside the axis-aligned box
+        ``[box_min, box_max]`` (m, boundary included; scene key ``handles`` with a ``box``),
+        otherwise as :meth:`add_handle`.
+
+        On a solid's hierarchy of several levels (VPD) every level holds the vertices its box
+        holds there (the levels share no vertices).
+
+        Args:
+            box_min: the box's lower corner, 3 finite numbers (m).
+            box_max: its upper corner, at or above ``box_min`` on every axis.
+            body: index of the scene's body; default 0.
+
+        Returns:
+            The handle's index (:attr:`num_handles` − 1).
+
+        Raises:
+            InvalidArgumentError: a non-finite corner, or ``box_min`` above ``box_max``.
+            InvalidSceneError: a body out of range, a box that holds no vertex of the body, or
+                (VPD) none of some level's, naming it.
+            WrongCallOrderError: the simulation has stepped.
+        """
+        lo, hi = vec3(box_min, "box_min"), vec3(box_max, "box_max")
+        out = ffi.new("int32_t*")
+        self._call(lib.ps_sim_add_handle_box, int32_value(body, "body"), lo, hi, out)
+        return int(out[0])
+
     @property
     def num_obstacles(self) -> int:
         """Number of obstacles (:meth:`add_obstacle` and the scene's ``"obstacles"``)."""

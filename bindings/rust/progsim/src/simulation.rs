@@ -366,13 +366,38 @@ impl<'h> Simulation<'h> {
     /// for vertices that are not a vertex group of the hierarchy. Nothing changes on error.
     pub fn add_handle(&mut self, body: usize, vertices: &[i32]) -> Result<usize> {
         let raw = self.handle()?;
-        let body = i32::try_from(body).map_err(|_| {
-            Error::new(Status::InvalidScene, format!("body index {body} does not exist"))
-        })?;
+        let body = c_body(body)?;
         let mut index = 0;
         // SAFETY: live simulation; `vertices` is alive for the call.
         let status = unsafe {
             sys::ps_sim_add_handle(raw, body, vertices.as_ptr(), vertices.len(), &mut index)
+        };
+        self.check(status)?;
+        Ok(count_from(index))
+    }
+
+    /// Adds a handle of the vertices of body `body` inside the axis-aligned box
+    /// [`box_min`, `box_max`] (m, boundary included; scene key `"handles"` with a `"box"`),
+    /// otherwise as [`add_handle`](Self::add_handle); returns its index. On a solid's hierarchy
+    /// of several levels (VPD) every level holds the vertices its box holds there.
+    ///
+    /// # Errors
+    /// [`Status::InvalidArgument`] for a non-finite corner or `box_min` above `box_max`;
+    /// [`Status::InvalidScene`] for a body out of range or a box that holds no vertex of the
+    /// body (or, VPD, of some level: named); [`Status::WrongCallOrder`] after a step. Nothing
+    /// changes on error.
+    pub fn add_handle_box(
+        &mut self,
+        body: usize,
+        box_min: [f64; 3],
+        box_max: [f64; 3],
+    ) -> Result<usize> {
+        let raw = self.handle()?;
+        let body = c_body(body)?;
+        let mut index = 0;
+        // SAFETY: live simulation; both corners are 3 doubles alive for the call.
+        let status = unsafe {
+            sys::ps_sim_add_handle_box(raw, body, box_min.as_ptr(), box_max.as_ptr(), &mut index)
         };
         self.check(status)?;
         Ok(count_from(index))
@@ -835,4 +860,10 @@ where
 /// A C work-unit count as u32 (negative values, which the C side never gives, read as 0).
 fn count_u32(value: i32) -> u32 {
     u32::try_from(value).unwrap_or(0)
+}
+
+/// A body index as the C ABI takes it, or [`Status::InvalidScene`].
+fn c_body(body: usize) -> Result<i32> {
+    i32::try_from(body)
+        .map_err(|_| Error::new(Status::InvalidScene, format!("body index {body} does not exist")))
 }

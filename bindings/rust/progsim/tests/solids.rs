@@ -299,3 +299,30 @@ fn a_volumetric_scene_animates_with_vpd() {
     let mean_y = |x: &[[f64; 3]]| x.iter().map(|p| p[1]).sum::<f64>() / x.len() as f64;
     assert!(mean_y(&last) < mean_y(&first), "the jelly falls along −y");
 }
+
+#[test]
+fn a_handle_box_holds_each_levels_own_vertices() {
+    let hierarchy = box_levels();
+    let def = SimulationDef {
+        effects: Effect::Elasticity | Effect::Gravity,
+        gravity: [0.0, 0.0, -G],
+        ..SimulationDef::default()
+    };
+    let mut sim = Simulation::new(&hierarchy, &def).unwrap();
+    let error = sim.add_handle_box(0, [0.02, -1.0, -1.0], [0.01, 1.0, 1.0]).unwrap_err();
+    assert_eq!(error.code, Status::InvalidArgument);
+    let error = sim.add_handle_box(0, [5.0; 3], [6.0; 3]).unwrap_err();
+    assert_eq!(error.code, Status::InvalidScene);
+    assert!(error.message.contains("holds no vertex"), "{}", error.message);
+    assert_eq!(sim.add_handle_box(0, [-0.01, -1.0, -1.0], [0.01, 1.0, 1.0]).unwrap(), 0);
+    sim.step_preview(3).unwrap();
+    sim.refine().unwrap();
+    for level in 0..2 {
+        let rest = hierarchy.rest_positions(level).unwrap();
+        let x = sim.positions(level).unwrap();
+        let held: Vec<usize> = (0..rest.len()).filter(|&v| rest[v][0].abs() <= 0.01).collect();
+        assert!(held.len() >= 4, "level {level}: {} held", held.len());
+        assert!(held.iter().all(|&v| x[v] == rest[v]), "level {level}: a held vertex moved");
+        assert!((0..rest.len()).any(|v| x[v][2] < rest[v][2]), "level {level}: nothing sags");
+    }
+}
