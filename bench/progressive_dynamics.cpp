@@ -1,15 +1,15 @@
-// What Progressive Dynamics buys on an animation (issue 29's benchmark; PD §5.2 reports preview
-// speed-ups of 21–75× against direct fine simulation): in one run, the preview (level 0 with
-// the proxy energy), every refined level, a direct simulation of the coarsest level and of the
-// finest, each over the same steps. Prints a table and writes CSV: wall time, time per step,
-// Newton iterations per step and peak resident memory per phase, then the ratios.
-// Long at 35K vertices (hours): not run in CI.
+// What a progressive animation buys (issues 29 and 32's benchmarks; PD §5.2 reports preview
+// speed-ups of 21–75× against direct fine simulation, VPD 10–120×): in one run, the preview
+// (level 0: PD's proxy energy on a shell, VPD's own tet level on a solid), every refined level,
+// a direct simulation of the coarsest level and of the finest, each over the same steps.
+// Prints a table and writes CSV: wall time, time per step, Newton iterations per step and peak
+// resident memory per phase, then the ratios. Long at 35K vertices (hours): not run in CI.
 //
 // usage: bench_progressive_dynamics [--direct-time-ratio=R] [--coarsest-only] [scene.json]
 //                                   [csv_path] [factor]
 //        scene: a dynamic scene with a "progressive" section whose body is a generated "grid"
-//        (default bench/scenes/pd_drape.json); factor multiplies its cell counts (default 1;
-//        4.6 gives the 34.6K-vertex drape).
+//        (PD; default bench/scenes/pd_drape.json) or "tet_box" (VPD); factor multiplies its
+//        cell counts (default 1; 4.6 gives the 34.6K-vertex drape).
 //        --direct-time-ratio=R: stop the direct finest simulation once it has taken R times the
 //        preview's time (default 200); its time over all steps is then extrapolated from its
 //        mean step, and the preview speed-up is marked as a bound.
@@ -19,13 +19,17 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "bench_main.hpp"
 #include "common/timer.hpp"
+#include "progressive/volumetric_dynamics.hpp"
 #include "scaled_scene.hpp"
 
 using namespace progsim;
@@ -63,12 +67,38 @@ double peak_memory_mib() {
   return kib / 1024.0;
 }
 
-/// A direct simulation of `level` (the level's own energy; the finest: the scene's mesh) for at
-/// most `steps` steps or until `time_limit` seconds have passed.
-Phase direct_phase(const Scene& scene, std::shared_ptr<const MeshHierarchy> hierarchy, int level,
-                   int steps, double time_limit) {
+/// Builds the direct simulation of a level (its own energy; the finest: the scene's mesh).
+using LevelFactory = std::function<std::unique_ptr<LevelSimulation>(int level)>;
+
+/// The driver of `scene`'s animation, and how to simulate one of its levels directly.
+struct Animation {
+  std::unique_ptr<ProgressiveAnimation> driver;
+  LevelFactory direct_level;
+};
+
+/// VPD for a solid (its scene's tet hierarchy), PD for a shell.
+Animation animation(const Scene& scene) {
+  if (std::any_of(scene.bodies.begin(), scene.bodies.end(), is_solid)) {
+    auto vpd = std::make_unique<VolumetricDynamics>(
+        scene, std::make_shared<const TetHierarchy>(build_scene_tet_hierarchy(scene)));
+    const VolumetricDynamics* levels = vpd.get();
+    return {std::move(vpd), [levels](int level) {
+              return std::make_unique<LevelSimulation>(levels->level_scene(level));
+            }};
+  }
+  auto pd = std::make_unique<ProgressiveDynamics>(scene);
+  auto hierarchy = pd->shared_hierarchy();
+  return {std::move(pd), [scene, hierarchy](int level) {
+            return std::make_unique<LevelSimulation>(scene, SimulationLevel{hierarchy, level, {}});
+          }};
+}
+
+/// A direct simulation of `level` for at most `steps` steps or until `time_limit` seconds have
+/// passed.
+Phase direct_phase(const LevelFactory& direct_level, int level, int steps, double time_limit) {
   reset_peak_memory();
-  LevelSimulation sim(scene, SimulationLevel{hierarchy, level, {}});
+  const std::unique_ptr<LevelSimulation> level_sim = direct_level(level);
+  LevelSimulation& sim = *level_sim;
   Phase p{"direct level " + std::to_string(level), sim.model().rest.num_vertices()};
   Timer timer;
   for (; p.steps < steps && timer.seconds() < time_limit; ++p.steps)
@@ -81,26 +111,26 @@ Phase direct_phase(const Scene& scene, std::shared_ptr<const MeshHierarchy> hier
 }
 
 /// The preview over `steps` steps.
-Phase preview_phase(ProgressiveDynamics& pd, int steps) {
+Phase preview_phase(ProgressiveAnimation& pd, int steps) {
   reset_peak_memory();
   for (int n = 0; n < steps; ++n) pd.step_preview();
   const DynamicLevelRecord& r = pd.record(0);
-  Phase p{"PD preview (level 0)", r.vertices, steps, r.seconds, r.newton_iterations};
+  Phase p{"preview (level 0)", r.vertices, steps, r.seconds, r.newton_iterations};
   p.peak_mib = peak_memory_mib();
   std::fprintf(stderr, "%s: %.1f s\n", p.name.c_str(), p.seconds);
   return p;
 }
 
 /// The next level refined over the previewed steps.
-Phase refine_phase(ProgressiveDynamics& pd) {
+Phase refine_phase(ProgressiveAnimation& pd) {
   reset_peak_memory();
   pd.refine([](int done, int total) {
     std::fprintf(stderr, "\rrefining: step %d/%d", done, total);
     return true;
   });
   const DynamicLevelRecord& r = pd.record(pd.level());
-  Phase p{"PD level " + std::to_string(pd.level()), r.vertices, static_cast<int>(r.steps.size()),
-          r.seconds, r.newton_iterations};
+  Phase p{"refined level " + std::to_string(pd.level()), r.vertices,
+          static_cast<int>(r.steps.size()), r.seconds, r.newton_iterations};
   p.peak_mib = peak_memory_mib();
   std::fprintf(stderr, "\n%s: %.1f s\n", p.name.c_str(), p.seconds);
   return p;
@@ -149,20 +179,21 @@ int main(int argc, char** argv) {
     std::ofstream csv = bench::open_csv(csv_path);
     const Scene scene = scaled_scene(path, factor);
     const int steps = scene.num_steps();
-    ProgressiveDynamics pd(scene);
+    const Animation run = animation(scene);
+    ProgressiveAnimation& pd = *run.driver;
+    std::fprintf(stderr, "%s, %d levels\n", pd.method(), pd.finest() + 1);
     std::vector<Phase> phases{preview_phase(pd, steps)};
     const double preview = phases[0].seconds;
     if (coarsest_only) {
-      phases.push_back(direct_phase(scene, pd.shared_hierarchy(), 0, steps, 1e30));
+      phases.push_back(direct_phase(run.direct_level, 0, steps, 1e30));
       print_and_write(phases, csv);
       std::printf("\npreview against direct coarsest: %.2fx its time\n",
                   preview / phases[1].seconds);
       return 0;
     }
     while (pd.level() < pd.finest()) phases.push_back(refine_phase(pd));
-    phases.push_back(direct_phase(scene, pd.shared_hierarchy(), 0, steps, 1e30));
-    phases.push_back(
-        direct_phase(scene, pd.shared_hierarchy(), pd.finest(), steps, ratio * preview));
+    phases.push_back(direct_phase(run.direct_level, 0, steps, 1e30));
+    phases.push_back(direct_phase(run.direct_level, pd.finest(), steps, ratio * preview));
     print_and_write(phases, csv);
     const Phase& direct_finest = phases.back();
     const Phase& direct_coarsest = phases[phases.size() - 2];
@@ -174,7 +205,7 @@ int main(int argc, char** argv) {
                                          "step, its first steps before contact are cheapest)");
     std::printf("preview against direct coarsest: %.2fx its time\n",
                 preview / direct_coarsest.seconds);
-    std::printf("PD finest step against direct finest step: %.2fx\n",
+    std::printf("refined finest step against direct finest step: %.2fx\n",
                 per_step(pd_finest) / per_step(direct_finest));
     return 0;
   });
