@@ -15,6 +15,7 @@
 #include "mesh/tet_generators.hpp"
 #include "mesh/tet_mesh_io.hpp"
 #include "mesh/tet_mesh_validation.hpp"
+#include "mesh/tetrahedralize.hpp"
 #include "scene/choice_table.hpp"
 #include "scene/parameter_table.hpp"
 
@@ -182,10 +183,46 @@ TetMesh generated_tets(const Json& j, const std::string& where) {
   return make_tet_box(size, n[0], n[1], n[2]);
 }
 
-/// A body's "mesh": a tet mesh file (.mesh, .msh, .node/.ele) or the tet_box generator make a
-/// solid; any other file or generator a shell (body_mesh).
+/// "tetrahedralize": {"cell_size", "facet_size", "facet_distance", "facet_angle",
+/// "cell_radius_edge_ratio", "edge_size", "feature_angle"}, each optional (TetrahedralizeOptions).
+TetrahedralizeOptions tetrahedralize_options(const Json& j, const std::string& where) {
+  expect_object(j, where);
+  expect_keys(j, where,
+              {"cell_size", "facet_size", "facet_distance", "facet_angle", "cell_radius_edge_ratio",
+               "edge_size", "feature_angle"});
+  TetrahedralizeOptions o;
+  o.cell_size = number_or(j, "cell_size", o.cell_size, where);
+  o.facet_size = number_or(j, "facet_size", o.facet_size, where);
+  o.facet_distance = number_or(j, "facet_distance", o.facet_distance, where);
+  o.facet_angle = number_or(j, "facet_angle", o.facet_angle, where);
+  o.cell_radius_edge_ratio =
+      number_or(j, "cell_radius_edge_ratio", o.cell_radius_edge_ratio, where);
+  o.edge_size = number_or(j, "edge_size", o.edge_size, where);
+  o.feature_angle = number_or(j, "feature_angle", o.feature_angle, where);
+  return o;
+}
+
+/// The solid a closed surface (a file or generator, `j` without its "tetrahedralize") bounds,
+/// filled with tets by CGAL Mesh_3; errors name `where`.
+BodyGeometry filled_geometry(const Json& j, const std::string& where, const std::string& base_dir) {
+  Json surface = j;
+  surface.erase("tetrahedralize");
+  const TetrahedralizeOptions options =
+      tetrahedralize_options(j.at("tetrahedralize"), where + ".tetrahedralize");
+  const TriangleMesh closed = body_mesh(surface, where, base_dir);
+  try {
+    return solid_geometry(tetrahedralize_surface(closed, options), where);
+  } catch (const Error& e) {  // keep the status (invalid_mesh for an open surface), add where
+    fail(e.status(), where + ".tetrahedralize: " + e.what());
+  }
+}
+
+/// A body's "mesh": a tet mesh file (.mesh, .msh, .node/.ele), the tet_box generator or any
+/// closed surface with "tetrahedralize" make a solid; any other file or generator a shell
+/// (body_mesh).
 BodyGeometry body_geometry(const Json& j, const std::string& where, const std::string& base_dir) {
   expect_object(j, where);
+  if (j.contains("tetrahedralize")) return filled_geometry(j, where, base_dir);
   if (j.contains("file") && j.at("file").is_string()) {
     std::filesystem::path path = j.at("file").get<std::string>();
     if (path.is_relative()) path = std::filesystem::path(base_dir) / path;

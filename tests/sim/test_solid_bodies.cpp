@@ -208,3 +208,58 @@ TEST(SolidBodies, ScenesNameWhatTheyCannotSimulate) {
   EXPECT_EQ(parsed.bodies[0].tets.rows(), 12);
   EXPECT_EQ(parsed.bodies[0].solid_model, SolidModel::corotated);
 }
+
+TEST(SolidBodies, AClosedSurfaceInASceneIsFilledWithTets) {
+  // A sphere of radius r = 0.5 (subdivided icosahedron, 0.5 % short of the sphere's volume)
+  // filled by Mesh_3: a solid whose tets sum to the sphere's volume within 3 d / r = 3 % (the
+  // boundary departs at most about d = facet_distance = 0.005 from the surface, over its area
+  // 4πr²), and whose boundary vertices lie on the surface.
+  const std::string scene = R"({"name": "ball", "effects": ["elasticity"],
+      "simulation": {"mode": "dynamic", "time_step": 0.01, "duration": 0.1},
+      "bodies": [{"name": "ball", "mesh": {"generator": "sphere", "radius": 0.5,
+                  "subdivisions": 3, "tetrahedralize": {"cell_size": 0.1,
+                  "facet_distance": 0.005}}}]})";
+  const Scene parsed = parse_scene(scene, ".");
+  const Body& ball = parsed.bodies[0];
+  ASSERT_TRUE(is_solid(ball));
+  double volume = 0.0;
+  for (Eigen::Index t = 0; t < ball.tets.rows(); ++t) {
+    Mat3 d;
+    for (int k = 0; k < 3; ++k)
+      d.col(k) =
+          (ball.mesh.vertices.row(ball.tets(t, k + 1)) - ball.mesh.vertices.row(ball.tets(t, 0)))
+              .transpose();
+    volume += d.determinant() / 6.0;
+  }
+  const double sphere = 4.0 / 3.0 * M_PI * 0.125;
+  EXPECT_NEAR(volume / sphere, 1.0, 0.03) << ball.tets.rows() << " tets";
+  // Its boundary vertices lie on the polyhedron, whose 1280 faces sag up to r(1 − cos ρ) ≈ 2 mm
+  // inside the sphere at their centres (ρ ≈ 0.09 rad, a face's circumradius angle).
+  for (Eigen::Index f = 0; f < ball.mesh.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(ball.mesh.vertices.row(ball.mesh.faces(f, k)).norm(), 0.5, 3e-3);
+  // An open surface cannot be filled: invalid_mesh, naming where.
+  try {
+    parse_scene(R"({"name": "sheet", "effects": ["elasticity"],
+        "simulation": {"mode": "dynamic", "time_step": 0.01, "duration": 0.1},
+        "bodies": [{"name": "sheet", "mesh": {"generator": "grid", "width": 1, "height": 1,
+                    "nx": 2, "ny": 2, "tetrahedralize": {}}}]})",
+                ".");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::invalid_mesh);
+    EXPECT_NE(std::string(e.what()).find("bodies[0].mesh.tetrahedralize"), std::string::npos)
+        << e.what();
+  }
+  try {
+    parse_scene(R"({"name": "b", "effects": ["elasticity"],
+        "simulation": {"mode": "dynamic", "time_step": 0.01, "duration": 0.1},
+        "bodies": [{"name": "b", "mesh": {"generator": "sphere", "radius": 1,
+                    "subdivisions": 1, "tetrahedralize": {"cell_sise": 0.1}}}]})",
+                ".");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::invalid_scene);
+    EXPECT_NE(std::string(e.what()).find("cell_sise"), std::string::npos) << e.what();
+  }
+}
