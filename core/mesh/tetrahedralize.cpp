@@ -47,7 +47,24 @@ void require(bool ok, const std::string& what, double value) {
          std::string(kLabel) + ": " + what + " (got " + std::to_string(value) + ")");
 }
 
-void check_options(const TetrahedralizeOptions& o) {
+/// Sizes below these fractions of the surface's bounding-box diagonal are refused: Mesh_3 would
+/// build about (diagonal / cell_size)³ tets (10⁷ at the bound) and (diagonal / facet_size)²
+/// boundary faces, running for hours or out of memory rather than failing.
+constexpr double kMinCellFraction = 1.0 / 215.0;
+constexpr double kMinFacetFraction = 1e-3;
+constexpr double kMinDistanceFraction = 1e-6;
+
+/// Throws Error(invalid_argument) if `value` (m) is below `fraction` of `diagonal`.
+void require_not_below(double value, double fraction, double diagonal, const char* name) {
+  if (value < fraction * diagonal)
+    fail(Status::invalid_argument,
+         std::string(kLabel) + ": " + name + " = " + std::to_string(value) +
+             " is too fine for a surface of bounding-box diagonal " + std::to_string(diagonal) +
+             " (at least " + std::to_string(fraction * diagonal) +
+             ": finer would build more tets than fit in memory)");
+}
+
+void check_options(const TetrahedralizeOptions& o, double diagonal) {
   const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
   require(positive(o.cell_size), "cell_size must be positive and finite", o.cell_size);
   require(positive(o.facet_size), "facet_size must be positive and finite", o.facet_size);
@@ -60,6 +77,10 @@ void check_options(const TetrahedralizeOptions& o) {
           "cell_radius_edge_ratio must be at least 2", o.cell_radius_edge_ratio);
   require(o.feature_angle >= 0.0 && o.feature_angle <= 180.0,
           "feature_angle must lie in [0, 180] degrees", o.feature_angle);
+  require_not_below(o.cell_size, kMinCellFraction, diagonal, "cell_size");
+  require_not_below(o.facet_size, kMinFacetFraction, diagonal, "facet_size");
+  require_not_below(o.edge_size, kMinFacetFraction, diagonal, "edge_size");
+  require_not_below(o.facet_distance, kMinDistanceFraction, diagonal, "facet_distance");
 }
 
 /// A valid manifold that is closed (every edge on two faces) and free of self-intersections:
@@ -147,7 +168,7 @@ TetMesh tetrahedralize_surface(const TriangleMesh& closed_surface,
                                const TetrahedralizeOptions& options) {
   check_closed_surface(closed_surface);
   const TetrahedralizeOptions o = resolved_options(options, closed_surface);
-  check_options(o);
+  check_options(o, bounding_box_diagonal(closed_surface.vertices));
   TetMesh mesh;
   try {
     mesh = to_tet_mesh(mesh_domain(to_surface_mesh(closed_surface), o));

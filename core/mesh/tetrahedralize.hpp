@@ -46,8 +46,10 @@ struct TetrahedralizeOptions {
 /// Deterministic for a given input and options. The number of tets grows like (size / cell_size)³.
 /// Throws Error(invalid_mesh) naming the problem if the surface fails validate_mesh, is not
 /// closed (an edge on one face only) or intersects itself; Error(invalid_argument) for an
-/// option out of range; Error(invalid_mesh) if the result fails validate_tet_mesh (then a
-/// smaller cell_size or facet_distance usually helps); Error(internal) if CGAL fails.
+/// option out of range, or sizes too fine for memory (cell_size below the bounding-box diagonal
+/// / 215, i.e. about 10⁷ tets; facet and edge sizes below 10⁻³ of it; facet_distance below 10⁻⁶);
+/// Error(invalid_mesh) if the result fails validate_tet_mesh (then a smaller cell_size or
+/// facet_distance usually helps); Error(internal) if CGAL fails.
 TetMesh tetrahedralize_surface(const TriangleMesh& closed_surface,
                                const TetrahedralizeOptions& options = {});
 

@@ -133,4 +133,14 @@ TEST(Tetrahedralize, RejectsOptionsOutOfRange) {
   options.cell_radius_edge_ratio = 1.5;
   expect_error([&] { tetrahedralize_surface(box, options); }, Status::invalid_argument,
                {"cell_radius_edge_ratio"});
+  // Sizes finer than memory allows are refused before Mesh_3 runs: the unit box's diagonal is
+  // √3, so a cell_size of 1e-3 would ask for about (√3 / 1e-3)³ = 5·10⁹ tets.
+  options = {};
+  options.cell_size = 1e-3;
+  expect_error([&] { tetrahedralize_surface(box, options); }, Status::invalid_argument,
+               {"cell_size", "too fine"});
+  options = {};
+  options.facet_distance = 1e-9;
+  expect_error([&] { tetrahedralize_surface(box, options); }, Status::invalid_argument,
+               {"facet_distance", "too fine"});
 }
