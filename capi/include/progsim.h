@@ -433,7 +433,8 @@ PS_API void ps_sim_def_init(ps_sim_def* def);
  * include PS_EFFECT_ELASTICITY and no shell effect (membrane, bending, pressure, strain limit,
  * wind: PS_ERROR_INVALID_SCENE naming it); a NULL def gives elasticity and gravity. Several
  * levels animate it with VPD in PS_MODE_DYNAMIC; PS_MODE_QUASISTATIC needs one level
- * (PS_ERROR_UNSUPPORTED), as do pinned vertices (VPD has no handles yet).
+ * (PS_ERROR_UNSUPPORTED), as do pinned vertices (they index the finest level, which coarse tet
+ * levels do not share: hold vertices on every VPD level by box, ps_sim_add_handle_box()).
  * @param out receives the simulation; caller owns, destroy with ps_sim_destroy().
  * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_INVALID_ARGUMENT (a parameter NaN or out of
  * its range, a prediction that is not a ps_prediction, naming it), PS_ERROR_INVALID_SCENE (a
