@@ -109,8 +109,7 @@ std::unique_ptr<ps_hierarchy> build_solid(const ps_hierarchy_def* def, const Tet
 Positions prolonged_to_finest(const ps_hierarchy& hierarchy, int32_t level, Positions x) {
   if (!hierarchy.solid)
     return level + 1 == hierarchy.num_levels() ? x : hierarchy.to_finest[level](x);
-  for (int l = level; l + 1 < hierarchy.num_levels(); ++l) x = hierarchy.solid->to_finer[l] * x;
-  return x;
+  return hierarchy.solid->prolong_to_finest(level, std::move(x));
 }
 
 /// A tet mesh from the C ABI's borrowed arrays, as borrowed_mesh for triangles.

@@ -23,6 +23,11 @@ struct TetHierarchy {
   std::vector<std::vector<TetBinding>> bindings;
 
   int num_levels() const { return static_cast<int>(levels.size()); }
+  /// Positions `x` of level `level` carried to the finest level, W_{L−1} ⋯ W_level x (VPD §3.3).
+  Positions prolong_to_finest(int level, Positions x) const {
+    for (int l = level; l + 1 < num_levels(); ++l) x = to_finer[l] * x;
+    return x;
+  }
 };
 
 /// How to build a tet hierarchy.

@@ -171,13 +171,19 @@ static void check_free_fall(const ps_sim* sim, int32_t level) {
   free(x);
 }
 
-/* VPD on the box: kind, preview and refinement in free fall, stats. */
-static void test_animation(const ps_hierarchy* h) {
+/* A solid's simulation def: elasticity and gravity along −z. */
+static ps_sim_def falling_def(void) {
   ps_sim_def def;
   ps_sim_def_init(&def);
   def.effects = PS_EFFECT_ELASTICITY | PS_EFFECT_GRAVITY;
   def.gravity[1] = 0.0;
   def.gravity[2] = -kGravity;
+  return def;
+}
+
+/* VPD on the box: kind, preview and refinement in free fall, stats. */
+static void test_animation(const ps_hierarchy* h) {
+  ps_sim_def def = falling_def();
   def.solver_newton_tolerance = 1e-12;
   ps_sim* sim = NULL;
   CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
@@ -240,11 +246,7 @@ static void test_closed_surface(void) {
 
 /* A handle by box on VPD: each level holds its own vertices at x = 0 in place on every frame. */
 static void test_box_handle(const ps_hierarchy* h) {
-  ps_sim_def def;
-  ps_sim_def_init(&def);
-  def.effects = PS_EFFECT_ELASTICITY | PS_EFFECT_GRAVITY;
-  def.gravity[1] = 0.0;
-  def.gravity[2] = -kGravity;
+  ps_sim_def def = falling_def();
   ps_sim* sim = NULL;
   CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
   const double lo[3] = {-0.01, -1.0, -1.0}, hi[3] = {0.01, 1.0, 1.0};
@@ -337,11 +339,7 @@ static void test_misuse(const ps_hierarchy* h) {
 static void test_direct(void) {
   ps_hierarchy* h = NULL;
   CHECK(ps_hierarchy_create_solid(NULL, g_vertices, kVertices, g_tets, kTets, &h) == PS_OK);
-  ps_sim_def def;
-  ps_sim_def_init(&def);
-  def.effects = PS_EFFECT_ELASTICITY | PS_EFFECT_GRAVITY;
-  def.gravity[1] = 0.0;
-  def.gravity[2] = -kGravity;
+  ps_sim_def def = falling_def();
   def.solver_newton_tolerance = 1e-12;
   ps_sim* sim = NULL;
   int32_t kind = -1;

@@ -71,20 +71,7 @@ impl Hierarchy {
         vertices: &[[f64; 3]],
         faces: &[[i32; 3]],
     ) -> Result<Hierarchy> {
-        Hierarchy::created_by(def, |raw_def, out| {
-            // SAFETY: [[f64; 3]] / [[i32; 3]] are 3n consecutive values; every pointer is valid
-            // for the call, which copies what it reads.
-            unsafe {
-                sys::ps_hierarchy_create(
-                    raw_def,
-                    vertices.as_ptr().cast::<f64>(),
-                    vertices.len(),
-                    faces.as_ptr().cast::<i32>(),
-                    faces.len(),
-                    out,
-                )
-            }
-        })
+        Hierarchy::created_from_arrays(def, vertices, faces, sys::ps_hierarchy_create)
     }
 
     /// As [`from_mesh`](Self::from_mesh), from flat row-major arrays: `vertices` holds
@@ -143,20 +130,7 @@ impl Hierarchy {
         vertices: &[[f64; 3]],
         tets: &[[i32; 4]],
     ) -> Result<Hierarchy> {
-        Hierarchy::created_by(def, |raw_def, out| {
-            // SAFETY: [[f64; 3]] / [[i32; 4]] are 3n / 4k consecutive values; every pointer is
-            // valid for the call, which copies what it reads.
-            unsafe {
-                sys::ps_hierarchy_create_solid(
-                    raw_def,
-                    vertices.as_ptr().cast::<f64>(),
-                    vertices.len(),
-                    tets.as_ptr().cast::<i32>(),
-                    tets.len(),
-                    out,
-                )
-            }
-        })
+        Hierarchy::created_from_arrays(def, vertices, tets, sys::ps_hierarchy_create_solid)
     }
 
     /// Builds a single-level solid's hierarchy from the solid a closed triangle surface bounds
@@ -182,19 +156,12 @@ impl Hierarchy {
         vertices: &[[f64; 3]],
         faces: &[[i32; 3]],
     ) -> Result<Hierarchy> {
-        Hierarchy::created_by(def, |raw_def, out| {
-            // SAFETY: as in from_mesh_with.
-            unsafe {
-                sys::ps_hierarchy_create_solid_from_surface(
-                    raw_def,
-                    vertices.as_ptr().cast::<f64>(),
-                    vertices.len(),
-                    faces.as_ptr().cast::<i32>(),
-                    faces.len(),
-                    out,
-                )
-            }
-        })
+        Hierarchy::created_from_arrays(
+            def,
+            vertices,
+            faces,
+            sys::ps_hierarchy_create_solid_from_surface,
+        )
     }
 
     /// Builds a single-level solid's hierarchy from a file, the format from the extension: a
@@ -293,6 +260,37 @@ impl Hierarchy {
         let status = unsafe { sys::ps_hierarchy_num_expansion_batches(raw, level, &mut batches) };
         self.check(status)?;
         Ok(crate::count_from(batches))
+    }
+
+    /// Runs a `ps_hierarchy_create*` call that takes vertices and cells (faces or tets) as flat
+    /// arrays.
+    fn created_from_arrays<const N: usize>(
+        def: &HierarchyDef,
+        vertices: &[[f64; 3]],
+        cells: &[[i32; N]],
+        create: unsafe extern "C" fn(
+            *const sys::ps_hierarchy_def,
+            *const f64,
+            usize,
+            *const i32,
+            usize,
+            *mut *mut sys::ps_hierarchy,
+        ) -> i32,
+    ) -> Result<Hierarchy> {
+        Hierarchy::created_by(def, |raw_def, out| {
+            // SAFETY: [[f64; 3]] / [[i32; N]] are 3n / Nk consecutive values; every pointer is
+            // valid for the call, which copies what it reads.
+            unsafe {
+                create(
+                    raw_def,
+                    vertices.as_ptr().cast::<f64>(),
+                    vertices.len(),
+                    cells.as_ptr().cast::<i32>(),
+                    cells.len(),
+                    out,
+                )
+            }
+        })
     }
 
     /// Runs a `ps_hierarchy_create*` call with `def` (checked and converted first) and takes
