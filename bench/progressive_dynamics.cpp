@@ -15,21 +15,17 @@
 //        mean step, and the preview speed-up is marked as a bound.
 //        --coarsest-only: the preview and the direct coarsest simulation alone (the preview's
 //        overhead over the mesh it animates, in minutes where the whole run takes an hour).
-#include "progressive/progressive_dynamics.hpp"
-
 #include <sys/resource.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <fstream>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "bench_main.hpp"
 #include "common/timer.hpp"
-#include "progressive/volumetric_dynamics.hpp"
+#include "progressive/progressive_animation.hpp"
 #include "scaled_scene.hpp"
 
 using namespace progsim;
@@ -67,37 +63,11 @@ double peak_memory_mib() {
   return kib / 1024.0;
 }
 
-/// Builds the direct simulation of a level (its own energy; the finest: the scene's mesh).
-using LevelFactory = std::function<std::unique_ptr<LevelSimulation>(int level)>;
-
-/// The driver of `scene`'s animation, and how to simulate one of its levels directly.
-struct Animation {
-  std::unique_ptr<ProgressiveAnimation> driver;
-  LevelFactory direct_level;
-};
-
-/// VPD for a solid (its scene's tet hierarchy), PD for a shell.
-Animation animation(const Scene& scene) {
-  if (std::any_of(scene.bodies.begin(), scene.bodies.end(), is_solid)) {
-    auto vpd = std::make_unique<VolumetricDynamics>(
-        scene, std::make_shared<const TetHierarchy>(build_scene_tet_hierarchy(scene)));
-    const VolumetricDynamics* levels = vpd.get();
-    return {std::move(vpd), [levels](int level) {
-              return std::make_unique<LevelSimulation>(levels->level_scene(level));
-            }};
-  }
-  auto pd = std::make_unique<ProgressiveDynamics>(scene);
-  auto hierarchy = pd->shared_hierarchy();
-  return {std::move(pd), [scene, hierarchy](int level) {
-            return std::make_unique<LevelSimulation>(scene, SimulationLevel{hierarchy, level, {}});
-          }};
-}
-
 /// A direct simulation of `level` for at most `steps` steps or until `time_limit` seconds have
 /// passed.
-Phase direct_phase(const LevelFactory& direct_level, int level, int steps, double time_limit) {
+Phase direct_phase(const ProgressiveAnimation& pd, int level, int steps, double time_limit) {
   reset_peak_memory();
-  const std::unique_ptr<LevelSimulation> level_sim = direct_level(level);
+  const std::unique_ptr<LevelSimulation> level_sim = pd.direct_level(level);
   LevelSimulation& sim = *level_sim;
   Phase p{"direct level " + std::to_string(level), sim.model().rest.num_vertices()};
   Timer timer;
@@ -179,21 +149,21 @@ int main(int argc, char** argv) {
     std::ofstream csv = bench::open_csv(csv_path);
     const Scene scene = scaled_scene(path, factor);
     const int steps = scene.num_steps();
-    const Animation run = animation(scene);
-    ProgressiveAnimation& pd = *run.driver;
+    const std::unique_ptr<ProgressiveAnimation> run = make_progressive_animation(scene);
+    ProgressiveAnimation& pd = *run;
     std::fprintf(stderr, "%s, %d levels\n", pd.method(), pd.finest() + 1);
     std::vector<Phase> phases{preview_phase(pd, steps)};
     const double preview = phases[0].seconds;
     if (coarsest_only) {
-      phases.push_back(direct_phase(run.direct_level, 0, steps, 1e30));
+      phases.push_back(direct_phase(pd, 0, steps, 1e30));
       print_and_write(phases, csv);
       std::printf("\npreview against direct coarsest: %.2fx its time\n",
                   preview / phases[1].seconds);
       return 0;
     }
     while (pd.level() < pd.finest()) phases.push_back(refine_phase(pd));
-    phases.push_back(direct_phase(run.direct_level, 0, steps, 1e30));
-    phases.push_back(direct_phase(run.direct_level, pd.finest(), steps, ratio * preview));
+    phases.push_back(direct_phase(pd, 0, steps, 1e30));
+    phases.push_back(direct_phase(pd, pd.finest(), steps, ratio * preview));
     print_and_write(phases, csv);
     const Phase& direct_finest = phases.back();
     const Phase& direct_coarsest = phases[phases.size() - 2];

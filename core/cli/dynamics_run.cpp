@@ -1,6 +1,5 @@
 #include "cli/dynamics_run.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,8 +14,7 @@
 #include "mesh/mesh_io.hpp"
 #include "progressive/dynamics_plots.hpp"
 #include "progressive/dynamics_report.hpp"
-#include "progressive/progressive_dynamics.hpp"
-#include "progressive/volumetric_dynamics.hpp"
+#include "progressive/progressive_animation.hpp"
 #include "sim/obstacle_script.hpp"
 
 namespace fs = std::filesystem;
@@ -118,19 +116,12 @@ void check_converged(const DynamicLevelSummary& last, Outcome& outcome) {
                     " steps ended short of the Newton tolerance (solver.max_newton_iterations)";
 }
 
-/// Progressive Dynamics for shells, its volumetric form (VPD) for a solid.
-std::unique_ptr<ProgressiveAnimation> make_animation(Scene scene) {
-  if (std::none_of(scene.bodies.begin(), scene.bodies.end(), is_solid))
-    return std::make_unique<ProgressiveDynamics>(std::move(scene));
-  auto hierarchy = std::make_shared<const TetHierarchy>(build_scene_tet_hierarchy(scene));
-  return std::make_unique<VolumetricDynamics>(std::move(scene), std::move(hierarchy));
-}
-
 }  // namespace
 
 int run_progressive_dynamics(Scene scene, const RunCommand& opt) {
   Timer total;
-  const std::unique_ptr<ProgressiveAnimation> animation = make_animation(std::move(scene));
+  const std::unique_ptr<ProgressiveAnimation> animation =
+      make_progressive_animation(std::move(scene));
   ProgressiveAnimation& pd = *animation;
   const Scene& s = pd.scene();
   const int steps = opt.steps > 0 ? opt.steps : s.num_steps();

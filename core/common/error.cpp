@@ -39,4 +39,10 @@ void fail(Status status, const std::string& message) {
   throw Error(status, message);
 }
 
+void check_level_exists(int level, int finest) {
+  if (level < 0 || level > finest)
+    fail(Status::out_of_range, "level " + std::to_string(level) + " does not exist (levels 0 to " +
+                                   std::to_string(finest) + ")");
+}
+
 }  // namespace progsim

@@ -38,4 +38,7 @@ class Error : public std::runtime_error {
 /// Throws Error(status, message).
 [[noreturn]] void fail(Status status, const std::string& message);
 
+/// Throws Error(out_of_range) "level L does not exist (levels 0 to F)" unless 0 ≤ level ≤ finest.
+void check_level_exists(int level, int finest);
+
 }  // namespace progsim

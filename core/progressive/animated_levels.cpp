@@ -86,9 +86,7 @@ void AnimatedLevels::refine(std::unique_ptr<LevelSimulation> sim, const LevelTra
 }
 
 void AnimatedLevels::check_level(int level) const {
-  if (level < 0 || level > finest_)
-    fail(Status::out_of_range, "level " + std::to_string(level) + " does not exist (levels 0 to " +
-                                   std::to_string(finest_) + ")");
+  check_level_exists(level, finest_);
   if (level > this->level())
     fail(Status::out_of_range,
          "level " + std::to_string(level) + " has not been computed yet (refine() up to it first)");

@@ -8,7 +8,6 @@
 #include "common/error.hpp"
 #include "progressive/dynamics_plots.hpp"
 #include "progressive/dynamics_report.hpp"
-#include "progressive/progressive_simulation.hpp"
 
 namespace progsim {
 namespace {
@@ -32,24 +31,24 @@ struct RunProgress {
   }
 };
 
-/// Level `level` animated directly over `steps` steps; its centre-of-mass deviation is taken
-/// from `coarsest` (the direct coarsest level's record; nullptr for the coarsest itself).
-DynamicLevelRecord direct_level(const Scene& scene,
-                                const std::shared_ptr<const MeshHierarchy>& hierarchy, int level,
-                                int steps, const DynamicLevelRecord* coarsest,
-                                const RunProgress& progress, int phase) {
-  LevelSimulation sim(scene, SimulationLevel{hierarchy, level, {}});
-  DynamicLevelRecord record = start_record(sim);
+/// Level `level` of `animation` animated directly over `steps` steps; its centre-of-mass
+/// deviation is taken from `coarsest` (the direct coarsest level's record; nullptr for the
+/// coarsest itself).
+DynamicLevelRecord direct_level(const ProgressiveAnimation& animation, int level, int steps,
+                                const DynamicLevelRecord* coarsest, const RunProgress& progress,
+                                int phase) {
+  const std::unique_ptr<LevelSimulation> sim = animation.direct_level(level);
+  DynamicLevelRecord record = start_record(*sim);
   const std::string name = "direct level " + std::to_string(level);
   for (int t = 0; t < steps; ++t) {
-    const StepRecord step = sim.step();
+    const StepRecord step = sim->step();
     const double deviation = coarsest && step.motion
                                  ? com_deviation(step.motion->center_of_mass, record, *coarsest, t)
                                  : 0.0;
     add_dynamic_step(record, step, deviation, 0.0);
     progress.step(phase, t + 1, steps, name);
   }
-  record.terms = sim.term_totals();
+  record.terms = sim->term_totals();
   return record;
 }
 
@@ -76,14 +75,14 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 
 DynamicsAccuracyReport run_dynamics_accuracy(const Scene& scene, AccuracyProgress progress,
                                              void* user) {
-  check_progressive_scene(scene);
   if (!scene.progressive.enabled() || scene.mode != StepMode::dynamic)
     fail(Status::invalid_scene,
          scene.name + ": a dynamic accuracy run needs a dynamic scene with coarse levels");
-  auto hierarchy = std::make_shared<const MeshHierarchy>(build_scene_hierarchy(scene));
-  ProgressiveDynamics pd(scene, hierarchy);
+  const std::unique_ptr<ProgressiveAnimation> animation = make_progressive_animation(scene);
+  ProgressiveAnimation& pd = *animation;
   DynamicsAccuracyReport report;
   report.scene = scene.name;
+  report.method = pd.method();
   report.steps = scene.num_steps();
   report.time_step = scene.time_step;
   report.up = up_direction(scene.gravity);
@@ -99,9 +98,8 @@ DynamicsAccuracyReport run_dynamics_accuracy(const Scene& scene, AccuracyProgres
     });
   for (int level = 0; level < levels; ++level) report.progressive.push_back(pd.record(level));
   for (int level = 0; level < levels; ++level)
-    report.direct.push_back(direct_level(scene, hierarchy, level, report.steps,
-                                         level > 0 ? &report.direct[0] : nullptr, run,
-                                         levels + level));
+    report.direct.push_back(direct_level(
+        pd, level, report.steps, level > 0 ? &report.direct[0] : nullptr, run, levels + level));
   return report;
 }
 
@@ -138,7 +136,8 @@ std::string dynamics_trajectory_csv(const DynamicsAccuracyReport& report) {
 }
 
 std::string dynamics_accuracy_markdown(const DynamicsAccuracyReport& report) {
-  std::string md = "# Progressive against direct animation: " + report.scene + "\n\n";
+  std::string md =
+      "# Progressive against direct animation: " + report.scene + " (" + report.method + ")\n\n";
   char head[256];
   std::snprintf(
       head, sizeof head,

@@ -1,12 +1,13 @@
 #pragma once
-/// @file Progressive Dynamics against direct simulation at every level (PD Fig. 19): the same
-/// steps animated progressively (preview, then each level refined) and directly on each level
-/// alone, with each level's centre-of-mass trajectory against its method's coarsest level.
+/// @file Progressive Dynamics (PD for shells, VPD for solids) against direct simulation at every
+/// level (PD Fig. 19): the same steps animated progressively (preview, then each level refined)
+/// and directly on each level alone, with each level's centre-of-mass trajectory against its
+/// method's coarsest level.
 #include <string>
 #include <vector>
 
 #include "progressive/accuracy.hpp"
-#include "progressive/progressive_dynamics.hpp"
+#include "progressive/progressive_animation.hpp"
 #include "scene/scene.hpp"
 
 namespace progsim {
@@ -14,6 +15,7 @@ namespace progsim {
 /// Both animations of a dynamic scene, level by level (0 = coarsest).
 struct DynamicsAccuracyReport {
   std::string scene;
+  std::string method;  ///< the progressive method ("progressive dynamics", ...)
   int steps = 0;
   double time_step = 0.0;
   Vec3 up = Vec3::UnitY();  ///< against gravity: "height" in the plots

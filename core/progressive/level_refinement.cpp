@@ -17,10 +17,33 @@ Vector predicted(DynamicsPrediction rule, const LevelTransfer& p, double h, cons
       return fine_now + h * p.velocities(coarse_velocity_now);
     case DynamicsPrediction::prolonged_positions:  // PD eq. 5: P(x_l^t) + h U v_l^t
       return p.positions(coarse_now) + h * p.velocities(coarse_velocity_now);
-    case DynamicsPrediction::per_frame:  // PSQ per frame (PD fn. 2): P(x_l^{t+1})
+    case DynamicsPrediction::per_frame:  // PSQ per frame (PD §4.3 fn. 3): P(x_l^{t+1})
       return p.positions(coarse_next);
   }
   return fine_now;
+}
+
+/// The targets of a finer level's step t → t+1: x̂ by `settings.prediction`, the consistency
+/// penalty's P(x_l^{t+1}) and, per frame, the vertical refinement the step starts from.
+StepTargets step_targets(const LevelSimulation& sim, const LevelTransfer& p,
+                         const ProgressiveSettings& settings, double h, const Vector& coarse_now,
+                         const Vector& coarse_velocity_now, const Vector& coarse_next) {
+  StepTargets targets;
+  targets.predicted = predicted(settings.prediction, p, h, sim.dofs(), coarse_now,
+                                coarse_velocity_now, coarse_next);
+  if (settings.consistency_weight > 0.0) targets.consistency = p.positions(coarse_next);
+  if (settings.prediction == DynamicsPrediction::per_frame)
+    targets.start =
+        p.vertical ? p.vertical(coarse_next, targets.predicted, sim) : targets.predicted;
+  return targets;
+}
+
+void check_per_frame(const LevelSimulation& sim, const LevelTransfer& p,
+                     const ProgressiveSettings& settings) {
+  if (settings.prediction == DynamicsPrediction::per_frame && !p.vertical && sim.contact())
+    fail(Status::unsupported,
+         "the per_frame prediction restarts every step from the coarser frame, which needs a safe "
+         "vertical refinement under contact; this hierarchy (tets) has none");
 }
 
 }  // namespace
@@ -29,6 +52,7 @@ void animate_finer_level(LevelSimulation& sim, const CoarserLevel& coarse,
                          const LevelTransfer& transfer, const ProgressiveSettings& settings,
                          double time_step, const RefineProgress& progress, Trajectory& frames,
                          DynamicLevelRecord& record) {
+  check_per_frame(sim, transfer, settings);
   const int steps = coarse.frames->num_frames() - 1;
   Vector x_now, v_now, x_next, v_next;
   coarse.frames->read(0, x_now, v_now);
@@ -38,11 +62,8 @@ void animate_finer_level(LevelSimulation& sim, const CoarserLevel& coarse,
                                          *coarse.masses);
   for (int t = 0; t < steps; ++t) {
     coarse.frames->read(t + 1, x_next, v_next);
-    StepTargets targets;
-    targets.predicted =
-        predicted(settings.prediction, transfer, time_step, sim.dofs(), x_now, v_now, x_next);
-    if (settings.consistency_weight > 0.0) targets.consistency = transfer.positions(x_next);
-    const StepRecord step = sim.step(targets);  // PD eq. 6
+    const StepRecord step =  // PD eq. 6
+        sim.step(step_targets(sim, transfer, settings, time_step, x_now, v_now, x_next));
     frames.append(sim.dofs(), sim.velocities());
     const double deviation =
         step.motion ? com_deviation(step.motion->center_of_mass, record, *coarse.preview, t) : 0.0;

@@ -13,11 +13,17 @@
 namespace progsim {
 
 /// How a finer level sees the coarser one: P (positions, DOFs → DOFs), U (velocities, DOFs →
-/// DOFs) and U as a matrix (for the consistency metric, VPD App. C eq. 19).
+/// DOFs), U as a matrix (for the consistency metric, VPD App. C eq. 19) and, for PSQ per frame,
+/// the vertical refinement of a coarser frame.
 struct LevelTransfer {
+  /// A coarser frame (DOFs) refined toward `target` = P(frame) on the finer level, free of
+  /// crossings with it and its surroundings in `finer` (PSQ §4.4's safe refinement).
+  using Vertical = std::function<Vector(const Vector& frame, const Vector& target,
+                                        const LevelSimulation& finer)>;
   std::function<Vector(const Vector&)> positions;
   std::function<Vector(const Vector&)> velocities;
   const ProlongationMatrix* intrinsic = nullptr;
+  Vertical vertical;  ///< empty: none (then per_frame takes P(frame) and refuses contact)
 };
 
 /// The coarser level an animation refines: its frames, its masses and the preview's record
@@ -31,8 +37,11 @@ struct CoarserLevel {
 
 /// Animates `sim` (the finer level at its initial state) over every step of `coarse`: its
 /// velocities start as U v_l⁰, each step's x̂ follows `prediction` and, with a consistency
-/// weight, the penalty pulls toward P(x_l^{t+1}). Appends every frame to `frames` and every step
-/// to `record`. Throws Error(cancelled) when `progress` returns false.
+/// weight, the penalty pulls toward P(x_l^{t+1}). With the per_frame prediction each step starts
+/// from the vertical refinement of x_l^{t+1} instead of the level's own xᵗ (PSQ per frame, PD
+/// §4.3 fn. 3). Appends every frame to `frames` and every step to `record`. Throws
+/// Error(cancelled) when `progress` returns false, Error(unsupported) for per_frame with contact
+/// and no vertical refinement (solids).
 void animate_finer_level(LevelSimulation& sim, const CoarserLevel& coarse,
                          const LevelTransfer& transfer, const ProgressiveSettings& settings,
                          double time_step, const RefineProgress& progress, Trajectory& frames,

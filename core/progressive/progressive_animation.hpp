@@ -2,6 +2,8 @@
 /// @file What a progressive animation driver offers its users (the CLI, benchmarks): a preview
 /// stepped on level 0, finer levels animated over it, and every level's frames and records.
 /// ProgressiveDynamics (shells, PD) and VolumetricDynamics (tet solids, VPD) implement it.
+#include <memory>
+
 #include "progressive/dynamic_records.hpp"
 #include "scene/scene.hpp"
 #include "sim/level_simulation.hpp"
@@ -46,6 +48,14 @@ class ProgressiveAnimation {
   virtual const DynamicLevelRecord& record(int level) const = 0;
   /// The surface faces of level `level` (its shell, or its solid's boundary) over its vertices.
   virtual const Faces& surface_faces(int level) const = 0;
+  /// The direct baseline of level `level`: its mesh simulated alone from the initial state with
+  /// its own energy (no proxy, no coarser trajectory), the scene's current settings.
+  /// Error(out_of_range) for a level that does not exist.
+  virtual std::unique_ptr<LevelSimulation> direct_level(int level) const = 0;
 };
+
+/// Progressive Dynamics for a scene of shells, its volumetric form (VPD) for a scene with a
+/// solid body. Throws as the drivers' constructors do.
+std::unique_ptr<ProgressiveAnimation> make_progressive_animation(Scene scene);
 
 }  // namespace progsim

@@ -6,6 +6,7 @@
 #include "common/timer.hpp"
 #include "progressive/level_refinement.hpp"
 #include "progressive/progressive_simulation.hpp"
+#include "progressive/safe_refinement.hpp"
 
 namespace progsim {
 namespace {
@@ -20,12 +21,22 @@ Scene dynamic_scene(Scene scene) {
 }
 
 /// The shell prolongation as a level transfer: P(x), and U v with the offsets frozen (PD eq. 5's
-/// V = ∇P, PD §4.6).
-LevelTransfer shell_transfer(const ShellProlongation& p) {
-  return {
+/// V = ∇P, PD §4.6); a coarser frame refined vertically by PSQ's safe refinement (§4.4).
+LevelTransfer shell_transfer(const ShellProlongation& p, const MeshHierarchy& hierarchy,
+                             int coarse) {
+  LevelTransfer transfer{
       [&p](const Vector& x) { return Vector(as_dofs(p(Positions(as_positions(x))))); },
       [&p](const Vector& v) { return Vector(as_dofs(Positions(p.intrinsic() * as_positions(v)))); },
-      &p.intrinsic()};
+      &p.intrinsic(),
+      {}};
+  transfer.vertical = [&hierarchy, coarse](const Vector& frame, const Vector& target,
+                                           const LevelSimulation& finer) {
+    if (!finer.contact()) return target;
+    const RefinementSurroundings around = refinement_surroundings(*finer.contact(), finer.model());
+    return Vector(as_dofs(safe_refinement(hierarchy, coarse, Positions(as_positions(frame)),
+                                          Positions(as_positions(target)), around)));
+  };
+  return transfer;
 }
 
 }  // namespace
@@ -52,6 +63,11 @@ std::unique_ptr<LevelSimulation> ProgressiveDynamics::make_level(int level) cons
   return std::make_unique<LevelSimulation>(scene_, std::move(spec));
 }
 
+std::unique_ptr<LevelSimulation> ProgressiveDynamics::direct_level(int level) const {
+  check_level_exists(level, finest());
+  return std::make_unique<LevelSimulation>(scene_, SimulationLevel{hierarchy_, level, {}});
+}
+
 void ProgressiveDynamics::restart() {
   levels_.restart(make_level(0));
 }
@@ -72,8 +88,9 @@ void ProgressiveDynamics::set_preview_velocities(const Vector& velocities) {
 void ProgressiveDynamics::refine(const RefineProgress& progress) {
   levels_.check_refinable();
   const int coarse = level();
-  levels_.refine(make_level(coarse + 1), shell_transfer(*operators_->next(coarse)),
-                 scene_.progressive, scene_.time_step, progress);
+  levels_.refine(make_level(coarse + 1),
+                 shell_transfer(*operators_->next(coarse), *hierarchy_, coarse), scene_.progressive,
+                 scene_.time_step, progress);
 }
 
 }  // namespace progsim

@@ -83,6 +83,8 @@ class ProgressiveDynamics final : public ProgressiveAnimation {
   const Faces& surface_faces(int level) const override {
     return hierarchy_->levels.at(level).rest.faces;
   }
+  /// Level `level`'s mesh alone with its own energy (the direct baseline, PD Fig. 19).
+  std::unique_ptr<LevelSimulation> direct_level(int level) const override;
 
  private:
   /// Level `level` at its initial state, solved with the scene's own solver (PD solves each

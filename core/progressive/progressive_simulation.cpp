@@ -174,19 +174,6 @@ ShellModel ProgressiveSimulation::level_model(int level) const {
   return level < finest() ? level_shell_model(model, *hierarchy_, level) : model;
 }
 
-RefinementSurroundings ProgressiveSimulation::surroundings(const ShellModel& model) const {
-  const ContactPotential& contact = *sim_->contact();
-  const CollisionMesh& mesh = contact.mesh();
-  RefinementSurroundings around;
-  around.vertex_offset = shell_contact_offsets(model);
-  around.obstacle_positions = contact.obstacle_positions();
-  around.obstacle_faces = mesh.faces.bottomRows(mesh.faces.rows() - mesh.num_shell_faces).array() -
-                          mesh.num_shell_vertices;
-  if (contact.ground()) around.ground = *contact.ground();
-  around.dhat = contact.dhat();
-  return around;
-}
-
 StrainCorrectionStats ProgressiveSimulation::correct_refined_strain(
     const ShellModel& model, Vector& start, const Positions& obstacles) const {
   const int fine = level_ + 1;
@@ -247,7 +234,7 @@ void ProgressiveSimulation::refine() {
     Positions obstacles = sim_->obstacle_positions();
     const ShellModel model = level_model(level_ + 1);
     if (contact) {
-      const RefinementSurroundings around = surroundings(model);
+      const RefinementSurroundings around = refinement_surroundings(*contact, model);
       start =
           as_dofs(safe_refinement(*hierarchy_, level_, coarse, target, around, {}, &refinement));
       obstacles = refined_obstacles(start, around, &obstacle_refinement);
@@ -291,9 +278,7 @@ Positions ProgressiveSimulation::refined_obstacles(const Vector& start,
 }
 
 Positions ProgressiveSimulation::positions(int level) const {
-  if (level < 0 || level > finest())
-    fail(Status::out_of_range, "level " + std::to_string(level) + " does not exist (levels 0 to " +
-                                   std::to_string(finest()) + ")");
+  check_level_exists(level, finest());
   if (level == level_) return sim_->positions();
   if (level < level_) return records_[level].positions;
   Positions x = sim_->positions();
@@ -303,9 +288,7 @@ Positions ProgressiveSimulation::positions(int level) const {
 }
 
 std::optional<StateDistance> ProgressiveSimulation::error_against_finest(int level) const {
-  if (level < 0 || level > finest())
-    fail(Status::out_of_range, "level " + std::to_string(level) + " does not exist (levels 0 to " +
-                                   std::to_string(finest()) + ")");
+  check_level_exists(level, finest());
   if (finest() == 0 || level_ != finest() || !records_[finest()].equilibrium) return std::nullopt;
   const Positions converged = sim_->positions();
   if (level == finest()) return StateDistance{};

@@ -146,9 +146,6 @@ class ProgressiveSimulation {
   /// strain limits, against the obstacles at `obstacles`.
   StrainCorrectionStats correct_refined_strain(const ShellModel& model, Vector& start,
                                                const Positions& obstacles) const;
-  /// What the shell `model` (the level refined into) must stay clear of during refinement: its
-  /// contact offsets, the obstacles where they are now, the ground.
-  RefinementSurroundings surroundings(const ShellModel& model) const;
   /// Obstacle vertices the current level's contact meets (without copying their positions).
   int obstacle_vertex_count() const;
   /// Adds a solve's outcome to the current level's record.

@@ -9,9 +9,11 @@
 #include "common/constants.hpp"
 #include "common/error.hpp"
 #include "common/parallel.hpp"
+#include "contact/contact_potential.hpp"
 #include "hierarchy/expansion_coloring.hpp"
 #include "mesh/intersection_check.hpp"
 #include "progressive/patch_relaxation.hpp"
+#include "sim/contact_setup.hpp"
 
 namespace progsim {
 namespace {
@@ -570,6 +572,19 @@ Positions safe_refinement(const MeshHierarchy& hierarchy, int level, const Posit
   local.inside_pairs = end.inside;
   if (stats) *stats = local;
   return expansion.positions();
+}
+
+RefinementSurroundings refinement_surroundings(const ContactPotential& contact,
+                                               const ShellModel& finer) {
+  const CollisionMesh& mesh = contact.mesh();
+  RefinementSurroundings around;
+  around.vertex_offset = shell_contact_offsets(finer);
+  around.obstacle_positions = contact.obstacle_positions();
+  around.obstacle_faces = mesh.faces.bottomRows(mesh.faces.rows() - mesh.num_shell_faces).array() -
+                          mesh.num_shell_vertices;
+  if (contact.ground()) around.ground = *contact.ground();
+  around.dhat = contact.dhat();
+  return around;
 }
 
 }  // namespace progsim

@@ -22,6 +22,14 @@ struct RefinementSurroundings {
   double dhat = 1e-3;                 ///< activation gap d̂ (m): the gap g₀ is capped by it
 };
 
+class ContactPotential;
+struct ShellModel;
+
+/// What the shell `finer` (the level refined into) must stay clear of during refinement: its
+/// contact offsets, the obstacles where `contact` has them now, the ground.
+RefinementSurroundings refinement_surroundings(const ContactPotential& contact,
+                                               const ShellModel& finer);
+
 /// Parameters of PSQ Algorithms 3–5.
 struct SafeRefinementSettings {
   /// A new vertex first moves this fraction of its target edge off its partner, along it, as

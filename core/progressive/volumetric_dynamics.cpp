@@ -64,7 +64,7 @@ LevelTransfer tet_transfer(const ProlongationMatrix& w) {
   const auto apply = [&w](const Vector& x) {
     return Vector(as_dofs(Positions(w * as_positions(x))));
   };
-  return {apply, apply, &w};
+  return {apply, apply, &w, {}};
 }
 
 }  // namespace
@@ -117,6 +117,11 @@ std::unique_ptr<LevelSimulation> VolumetricDynamics::make_level(int level) const
   SimulationLevel own;  // the level's own mesh and elastics (VPD §3.2)
   if (level > 0) own.consistency_weight = scene_.progressive.consistency_weight;
   return std::make_unique<LevelSimulation>(level_scene(level), std::move(own));
+}
+
+std::unique_ptr<LevelSimulation> VolumetricDynamics::direct_level(int level) const {
+  check_level_exists(level, finest());
+  return std::make_unique<LevelSimulation>(level_scene(level));
 }
 
 void VolumetricDynamics::refine(const RefineProgress& progress) {

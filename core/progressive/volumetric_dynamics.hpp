@@ -63,6 +63,8 @@ class VolumetricDynamics final : public ProgressiveAnimation {
   Scene level_scene(int level) const { return level_scene(scene_, level); }
   /// The boundary faces of tet level `level`.
   const Faces& surface_faces(int level) const override { return surface_faces_.at(level); }
+  /// Level `level`'s tets alone with their own elastics (the direct baseline).
+  std::unique_ptr<LevelSimulation> direct_level(int level) const override;
   /// Frames of a computed level (steps + 1). Throws Error(out_of_range) otherwise.
   int num_frames(int level) const override { return levels_.num_frames(level); }
   /// Positions and velocities (|V_level| × 3) of a frame. Throws Error(out_of_range).

@@ -391,6 +391,7 @@ void LevelSimulation::check_targets(const StepTargets& targets) const {
       fail(Status::invalid_argument, std::string(what) + " has a non-finite entry");
   };
   if (targets.predicted.size() > 0) check(targets.predicted, "the predicted state x̂");
+  if (targets.start.size() > 0) check(targets.start, "the step's start");
   if (penalty_) check(targets.consistency, "the consistency penalty's target");
 }
 
@@ -416,9 +417,11 @@ StepRecord LevelSimulation::solve_at(double t, bool new_step, const StepTargets&
   const bool dynamic = scene_.mode == StepMode::dynamic;
   const Vector older = dynamic ? Vector(x_ - h * v_) : Vector();  // xᵗ⁻¹ (v = (xᵗ − xᵗ⁻¹)/h)
   x_previous_ = x_;
+  if (targets.start.size() > 0) start_step_at(targets.start);
   // x̂ = xᵗ + h vᵗ (implicit Euler; v = 0: xᵗ), or the coarser level's prediction (PD eq. 5).
   if (inertia_)
-    inertia_->set_target(targets.predicted.size() > 0 ? targets.predicted : Vector(x_ + h * v_));
+    inertia_->set_target(targets.predicted.size() > 0 ? targets.predicted
+                                                      : Vector(x_previous_ + h * v_));
   if (penalty_) penalty_->set_target(targets.consistency);
   if (wind_) wind_->lag(x_, v_, h, scene_.wind.at(t));  // forces at the step's end time
   if (contact_) contact_->reset_min_gap();
@@ -498,6 +501,13 @@ bool LevelSimulation::at_rest(const StepRecord& record) const {
            record.change_rms < scene_.solver.tolerance * length_;
   return stop == NewtonStop::converged &&
          (!scene_.progressive.proximal || record.newton.iterations == 0);
+}
+
+void LevelSimulation::start_step_at(const Vector& start) {
+  x_ = start;
+  if (contact_) contact_->fit_offsets(x_);  // as a refined LevelStart (PSQ §4.4.3)
+  if (strain_limit_) strain_limit_->fit_limits(x_, StrainLimit::FitAfter::motion);
+  fit_to_start_ = true;
 }
 
 void LevelSimulation::restore_fitted(StepRecord& record) {

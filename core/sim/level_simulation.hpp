@@ -44,6 +44,11 @@ struct LevelStart {
 struct StepTargets {
   Vector predicted;    ///< x̂ (3|V_l|); empty: xᵗ + h vᵗ, implicit Euler on the level alone
   Vector consistency;  ///< y of the consistency penalty (3|V_l|); required iff the level has one
+  /// Where the solve starts (3|V_l|) instead of xᵗ: PSQ per frame's vertical refinement of the
+  /// coarser frame (PD §4.3 fn. 3). Crossing-free; pairs within their offsets and faces beyond
+  /// their strain limits are fitted to it (as a refined LevelStart). Empty: xᵗ. The velocity
+  /// stays (xᵗ⁺¹ − xᵗ)/h.
+  Vector start;
 };
 
 /// Builds one energy term per enabled effect and advances the scene step by step with
@@ -163,6 +168,8 @@ class LevelSimulation {
   void apply_ramps(double t);
   /// After a solve from a fitted start: offsets and strain limits moved back toward their own
   /// values, what is still fitted counted in `record`.
+  /// Moves the state to a step's given start and fits the contact offsets and strain limits to it.
+  void start_step_at(const Vector& start);
   void restore_fitted(StepRecord& record);
   /// Moves handles and obstacles toward their scripts at time t, in rounds with a Newton solve
   /// between them when contact (CCD) or a face next to a handle (max_handle_step()) stops

@@ -15,8 +15,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "hierarchy/hierarchy_io.hpp"
 #include "mesh/intersection_check.hpp"
@@ -822,6 +826,48 @@ TEST_F(Cli, AVolumetricSceneWithLevelsRunsVolumetricProgressiveDynamics) {
   EXPECT_EQ(previous, 729);  // the finest level is the scene's own 8³-cell jelly
   EXPECT_TRUE(fs::exists(out / "level_2" / "frame_00010.obj"));
   EXPECT_EQ(read_log(out).size(), 30u);  // 10 steps on each of 3 levels
+}
+
+TEST_F(Cli, AccuracyOnASolidComparesVpdWithDirectSimulationOfEveryTetLevel) {
+  // A jelly falling freely for 6 steps (it is 10 cm above the ground): on every tet level,
+  // progressive and direct, the centre of mass follows implicit Euler's free fall,
+  // y_n − y_1 = −g h² (n(n+1)/2 − 1), whatever the level's mesh.
+  const std::string text = R"({
+    "name": "jelly_fall", "simulation": {"mode": "dynamic", "time_step": 0.01, "duration": 0.06},
+    "effects": ["elasticity", "gravity", "contact"],
+    "bodies": [{"name": "jelly", "mesh": {"generator": "tet_box", "size": [0.2, 0.2, 0.2],
+                "cells": [6, 6, 6]}, "transform": {"translate": [0, 0.2, 0]},
+                "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.4, "density": 1000,
+                             "solid_model": "neo_hookean"}}],
+    "ground": {"height": 0.0}, "contact": {"dhat": 1e-3},
+    "progressive": {"coarse_levels": 1, "coarsening_ratio": 3}})";
+  const fs::path out = dir_ / "jelly_accuracy";
+  const CommandResult r = run_cli("accuracy " + write("jelly.json", text).string() + " --out " +
+                                  out.string() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("| direct | 1 | 343 |"), std::string::npos) << r.output;
+  std::ifstream md(out / "accuracy.md");
+  const std::string markdown((std::istreambuf_iterator<char>(md)), {});
+  EXPECT_NE(markdown.find("(volumetric progressive dynamics)"), std::string::npos) << markdown;
+  std::ifstream csv(out / "trajectories.csv");
+  std::map<std::string, std::vector<double>> heights;  // "method level" → com_y per step
+  std::string line;
+  std::getline(csv, line);  // header
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 11u) << line;
+    heights[cells[0] + " " + cells[1]].push_back(std::stod(cells[6]));  // com_y
+  }
+  ASSERT_EQ(heights.size(), 4u);  // progressive and direct, levels 0 and 1
+  const double g = 9.81, h = 0.01;
+  for (const auto& [curve, y] : heights) {
+    ASSERT_EQ(y.size(), 6u) << curve;
+    for (int n = 2; n <= 6; ++n)
+      EXPECT_NEAR(y[n - 1] - y[0], -g * h * h * (n * (n + 1) / 2.0 - 1.0), 1e-9)
+          << curve << " " << n;
+  }
 }
 
 TEST_F(Cli, TheTwistedBarsEndsTurnAsScriptedOnEveryVpdLevel) {

@@ -169,6 +169,21 @@ TEST(VolumetricDynamics, MisuseIsRefusedNamingIt) {
   } catch (const Error& e) {
     EXPECT_EQ(e.status(), Status::invalid_argument);
   }
+  Scene per_frame = scene;  // restarting each step from the coarse frame: no safe tet refinement
+  per_frame.effects.enable(Effect::contact);
+  per_frame.ground.enabled = true;
+  per_frame.ground.height = -1.0;
+  per_frame.progressive.prediction = DynamicsPrediction::per_frame;
+  VolumetricDynamics restarted(per_frame, levels);
+  restarted.step_preview();
+  try {
+    restarted.refine();
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.status(), Status::unsupported);
+    EXPECT_NE(std::string(e.what()).find("per_frame"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(restarted.level(), 0);
   Scene handled = scene;
   Handle listed;  // by index: no counterpart on the coarse levels
   listed.vertices = {0};

@@ -1,0 +1,17 @@
+#include "progressive/progressive_animation.hpp"
+
+#include <algorithm>
+
+#include "progressive/progressive_dynamics.hpp"
+#include "progressive/volumetric_dynamics.hpp"
+
+namespace progsim {
+
+std::unique_ptr<ProgressiveAnimation> make_progressive_animation(Scene scene) {
+  if (std::none_of(scene.bodies.begin(), scene.bodies.end(), is_solid))
+    return std::make_unique<ProgressiveDynamics>(std::move(scene));
+  auto hierarchy = std::make_shared<const TetHierarchy>(build_scene_tet_hierarchy(scene));
+  return std::make_unique<VolumetricDynamics>(std::move(scene), std::move(hierarchy));
+}
+
+}  // namespace progsim
