@@ -1,6 +1,7 @@
 #include "mesh/tetrahedralize.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mesh_3/Dump_c3t3.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
@@ -9,9 +10,14 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/make_mesh_3.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <map>
+#include <mutex>
 #include <string>
+#include <thread>
 
 #include "common/error.hpp"
 #include "mesh/intersection_check.hpp"
@@ -29,6 +35,28 @@ using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Se
 using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation, Domain::Corner_index,
                                                         Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
+
+}  // namespace
+}  // namespace progsim
+
+namespace CGAL {
+/// Mesh_3 writes its whole complex into the working directory ("dump-bug.mesh" and
+/// ".binary.cgal", megabytes) before raising some errors (Refine_facets_3's "already inserted on
+/// surface", Protect_edges_sizing_field): a library must not write into its caller's folder. The
+/// error still reaches tetrahedralize_surface as a Failure_exception. Both values of the
+/// streamability flag are specialised, so this holds whichever CGAL computes for the complex.
+template <>
+struct Dump_c3t3<progsim::Complex, true> {
+  void dump_c3t3(const progsim::Complex&, const std::string&) const {}
+};
+template <>
+struct Dump_c3t3<progsim::Complex, false> {
+  void dump_c3t3(const progsim::Complex&, const std::string&) const {}
+};
+}  // namespace CGAL
+
+namespace progsim {
+namespace {
 
 constexpr const char* kLabel = "tetrahedralize";
 
@@ -53,6 +81,8 @@ void require(bool ok, const std::string& what, double value) {
 constexpr double kMinCellFraction = 1.0 / 215.0;
 constexpr double kMinFacetFraction = 1e-3;
 constexpr double kMinDistanceFraction = 1e-6;
+/// Mesh_3 stops refining at this many vertices (about 10⁷ tets, the cell-size bound's count).
+constexpr std::size_t kMaxVertices = 2000000;
 
 /// Throws Error(invalid_argument) if `value` (m) is below `fraction` of `diagonal`.
 void require_not_below(double value, double fraction, double diagonal, const char* name) {
@@ -77,6 +107,8 @@ void check_options(const TetrahedralizeOptions& o, double diagonal) {
           "cell_radius_edge_ratio must be at least 2", o.cell_radius_edge_ratio);
   require(o.feature_angle >= 0.0 && o.feature_angle <= 180.0,
           "feature_angle must lie in [0, 180] degrees", o.feature_angle);
+  require(o.time_limit > 0.0 && !std::isnan(o.time_limit), "time_limit must be positive",
+          o.time_limit);
   require_not_below(o.cell_size, kMinCellFraction, diagonal, "cell_size");
   require_not_below(o.facet_size, kMinFacetFraction, diagonal, "facet_size");
   require_not_below(o.edge_size, kMinFacetFraction, diagonal, "edge_size");
@@ -118,7 +150,8 @@ SurfaceMesh to_surface_mesh(const TriangleMesh& mesh) {
 /// manual, make_mesh_3), keeping the surface complex manifold. No exudation: CGAL 5.5's exuder
 /// breaks ties by cell address (a Double_map over facets), and its output changed from one
 /// process to the next (1 run in 15 on a sphere); the perturber orders by vertex ids.
-Complex mesh_domain(const SurfaceMesh& sm, const TetrahedralizeOptions& o) {
+Complex mesh_domain(const SurfaceMesh& sm, const TetrahedralizeOptions& o,
+                    CGAL::Mesh_error_code* error, std::atomic<bool>* stop) {
   CGAL::Random random(o.seed);  // Mesh_3's only random source here: the initial points
   Domain domain(sm, &random);
   // Protect sharp edges and corners so that flat faces and edges stay exact (Mesh_3 manual).
@@ -128,7 +161,60 @@ Complex mesh_domain(const SurfaceMesh& sm, const TetrahedralizeOptions& o) {
                           p::facet_size = o.facet_size, p::facet_distance = o.facet_distance,
                           p::cell_radius_edge_ratio = o.cell_radius_edge_ratio,
                           p::cell_size = o.cell_size);
-  return CGAL::make_mesh_3<Complex>(domain, criteria, p::manifold(), p::perturb(), p::no_exude());
+  return CGAL::make_mesh_3<Complex>(domain, criteria, p::manifold(), p::perturb(), p::no_exude(),
+                                    p::mesh_3_options(p::maximal_number_of_vertices = kMaxVertices,
+                                                      p::pointer_to_error_code = error,
+                                                      p::pointer_to_stop_atomic_boolean = stop));
+}
+
+/// Sets a flag once `seconds` have passed, unless destroyed first: Mesh_3's stop flag, which its
+/// refinement loops check between steps.
+class Deadline {
+ public:
+  Deadline(double seconds, std::atomic<bool>& flag)
+      : watcher_([this, seconds, &flag] {
+          std::unique_lock<std::mutex> lock(mutex_);
+          if (!done_.wait_for(lock, std::chrono::duration<double>(seconds),
+                              [this] { return over_; }))
+            flag.store(true, std::memory_order_release);
+        }) {}
+  Deadline(const Deadline&) = delete;
+  Deadline& operator=(const Deadline&) = delete;
+  ~Deadline() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      over_ = true;
+    }
+    done_.notify_one();
+    watcher_.join();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable done_;
+  bool over_ = false;
+  std::thread watcher_;  // last: started once the members it uses exist
+};
+
+/// One Mesh_3 run within the time limit. Throws Error(numerical_failure) if it was stopped.
+Complex mesh_within_limits(const SurfaceMesh& sm, const TetrahedralizeOptions& o) {
+  std::atomic<bool> stop{false};
+  CGAL::Mesh_error_code error = CGAL::CGAL_MESH_3_NO_ERROR;
+  Complex c3t3;
+  {
+    const Deadline deadline(o.time_limit, stop);
+    c3t3 = mesh_domain(sm, o, &error, &stop);
+  }
+  if (error == CGAL::CGAL_MESH_3_STOPPED)
+    fail(Status::numerical_failure, std::string(kLabel) + ": CGAL Mesh_3 did not finish within " +
+                                        std::to_string(o.time_limit) +
+                                        " s (time_limit); its refinement may cycle on this "
+                                        "surface: try feature_angle below 180 or other sizes");
+  if (error == CGAL::CGAL_MESH_3_MAXIMAL_NUMBER_OF_VERTICES_REACHED)
+    fail(Status::numerical_failure, std::string(kLabel) + ": CGAL Mesh_3 refined past " +
+                                        std::to_string(kMaxVertices) +
+                                        " vertices; try larger sizes");
+  return c3t3;
 }
 
 /// The cells of the complex as a tet mesh: vertices numbered by first use, so that unused
@@ -171,9 +257,9 @@ TetMesh tetrahedralize_surface(const TriangleMesh& closed_surface,
   check_options(o, bounding_box_diagonal(closed_surface.vertices));
   TetMesh mesh;
   try {
-    mesh = to_tet_mesh(mesh_domain(to_surface_mesh(closed_surface), o));
+    mesh = to_tet_mesh(mesh_within_limits(to_surface_mesh(closed_surface), o));
   } catch (const CGAL::Failure_exception& e) {
-    fail(Status::internal, std::string(kLabel) + ": CGAL Mesh_3 failed: " + e.what());
+    fail(Status::internal, std::string(kLabel) + ": CGAL Mesh_3 failed: " + e.message());
   }
   validate_tet_mesh(mesh, std::string(kLabel) + " (CGAL Mesh_3 output; try a smaller cell_size)");
   return mesh;

@@ -37,6 +37,10 @@ struct TetrahedralizeOptions {
   double feature_angle = 60.0;
   /// Seed of Mesh_3's random generator: equal inputs and options give identical meshes.
   unsigned seed = 0;
+  /// Wall-clock budget of one Mesh_3 run, s (> 0): Mesh_3's facet refinement can cycle without
+  /// end on some surfaces (measured: a decimated level of CGAL's elephant with feature_angle 180
+  /// ran for 10 min without finishing); it is stopped then.
+  double time_limit = 300.0;
 };
 
 /// Fills the solid bounded by `closed_surface` with tets (CGAL make_mesh_3 on a
@@ -49,7 +53,11 @@ struct TetrahedralizeOptions {
 /// option out of range, or sizes too fine for memory (cell_size below the bounding-box diagonal
 /// / 215, i.e. about 10⁷ tets; facet and edge sizes below 10⁻³ of it; facet_distance below 10⁻⁶);
 /// Error(invalid_mesh) if the result fails validate_tet_mesh (then a smaller cell_size or
-/// facet_distance usually helps); Error(internal) if CGAL fails.
+/// facet_distance usually helps); Error(internal) if CGAL fails (Mesh_3 asserts "a facet is not
+/// in conflict with its refinement point" on surfaces with edges of about 10⁻⁸ of their size,
+/// whatever the seed: measured on a decimated level of CGAL's elephant); Error(numerical_failure)
+/// if Mesh_3 exceeds time_limit or refines past 2·10⁶ vertices. Nothing is written to disk
+/// (Mesh_3's own debug dumps are switched off).
 TetMesh tetrahedralize_surface(const TriangleMesh& closed_surface,
                                const TetrahedralizeOptions& options = {});
 

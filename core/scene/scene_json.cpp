@@ -184,12 +184,13 @@ TetMesh generated_tets(const Json& j, const std::string& where) {
 }
 
 /// "tetrahedralize": {"cell_size", "facet_size", "facet_distance", "facet_angle",
-/// "cell_radius_edge_ratio", "edge_size", "feature_angle"}, each optional (TetrahedralizeOptions).
+/// "cell_radius_edge_ratio", "edge_size", "feature_angle", "time_limit"}, each optional
+/// (TetrahedralizeOptions).
 TetrahedralizeOptions tetrahedralize_options(const Json& j, const std::string& where) {
   expect_object(j, where);
   expect_keys(j, where,
               {"cell_size", "facet_size", "facet_distance", "facet_angle", "cell_radius_edge_ratio",
-               "edge_size", "feature_angle"});
+               "edge_size", "feature_angle", "time_limit"});
   TetrahedralizeOptions o;
   o.cell_size = number_or(j, "cell_size", o.cell_size, where);
   o.facet_size = number_or(j, "facet_size", o.facet_size, where);
@@ -199,6 +200,7 @@ TetrahedralizeOptions tetrahedralize_options(const Json& j, const std::string& w
       number_or(j, "cell_radius_edge_ratio", o.cell_radius_edge_ratio, where);
   o.edge_size = number_or(j, "edge_size", o.edge_size, where);
   o.feature_angle = number_or(j, "feature_angle", o.feature_angle, where);
+  o.time_limit = number_or(j, "time_limit", o.time_limit, where);
   return o;
 }
 

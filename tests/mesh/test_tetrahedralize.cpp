@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <iterator>
 #include <vector>
 
 #include "mesh/mesh_generators.hpp"
@@ -143,4 +145,20 @@ TEST(Tetrahedralize, RejectsOptionsOutOfRange) {
   options.facet_distance = 1e-9;
   expect_error([&] { tetrahedralize_surface(box, options); }, Status::invalid_argument,
                {"facet_distance", "too fine"});
+}
+
+TEST(Tetrahedralize, ARunPastItsTimeLimitIsStoppedWithAnErrorAndWritesNothing) {
+  // Mesh_3's refinement can cycle without end on some surfaces; the time limit stops it through
+  // Mesh_3's stop flag. A sphere at cell 0.02 (about 10⁵ tets) takes seconds, past 10 ms.
+  const TriangleMesh sphere = make_sphere(0.5, 4);
+  TetrahedralizeOptions options;
+  options.cell_size = 0.02;
+  options.time_limit = 0.01;
+  const auto before = std::distance(std::filesystem::directory_iterator("."), {});
+  expect_error([&] { tetrahedralize_surface(sphere, options); }, Status::numerical_failure,
+               {"did not finish within", "time_limit"});
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator("."), {}), before);
+  options.time_limit = 0.0;
+  expect_error([&] { tetrahedralize_surface(sphere, options); }, Status::invalid_argument,
+               {"time_limit"});
 }
