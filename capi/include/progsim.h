@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 16
+#define PS_VERSION_MINOR 17
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -619,7 +619,13 @@ typedef struct ps_load_def {
    *  with PS_LOAD_PER_VERTEX), summing to zero, with moment `moment` about moment_axis. The
    *  group must not lie on one line along the axis. */
   double moment;
-  double ramp;             /**< s, ≥ 0; default 0 (full load at once) */
+  double ramp; /**< s, ≥ 0; default 0 (full load at once) */
+  /** The group as a region instead (with num_vertices = 0): the body's vertices inside the
+   *  axis-aligned box [box_min, box_max] (m, boundary included), each NULL or 3 doubles,
+   *  both set or neither; borrowed during ps_sim_add_load() only. On VPD levels, which share
+   *  no vertices, each level takes its own vertices inside it. Default NULL. */
+  const double* box_min;
+  const double* box_max;   /**< see box_min; default NULL */
   int32_t internal_cookie; /**< set by ps_load_def_init(); do not touch */
 } ps_load_def;
 
@@ -634,9 +640,11 @@ PS_API void ps_load_def_init(ps_load_def* def);
  * @param out_index Nullable: receives the load's index (0, 1, ... in order of addition).
  * Errors: PS_ERROR_UNINITIALIZED_DEF, PS_ERROR_NULL_ARGUMENT (def, or vertices with
  * num_vertices > 0), PS_ERROR_INVALID_ARGUMENT (a distribution that is not a
- * ps_load_distribution), PS_ERROR_INVALID_SCENE naming the load and the problem (no vertices,
- * a vertex or body out of range, a non-finite value, a zero moment axis, a negative ramp, a
- * group that cannot carry the moment). On error nothing changed.
+ * ps_load_distribution; one box corner without the other, a box with vertices too, a
+ * non-finite corner or box_min above box_max), PS_ERROR_INVALID_SCENE naming the load and the
+ * problem (no vertices, a box that holds none, a vertex or body out of range, a non-finite
+ * value, a zero moment axis, a negative ramp, a group that cannot carry the moment). On error
+ * nothing changed.
  */
 PS_API int32_t ps_sim_add_load(ps_sim* sim, const ps_load_def* def, int32_t* out_index);
 

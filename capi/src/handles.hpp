@@ -109,6 +109,10 @@ void apply_scene(ps_sim& sim, Scene scene);
 TriangleMesh borrowed_mesh(const double* vertices, std::size_t num_vertices, const int32_t* faces,
                            std::size_t num_faces);
 
+/// The box [lo, hi]; throws ApiError(PS_ERROR_INVALID_ARGUMENT) for a non-finite corner or
+/// lo above hi on some axis.
+VertexBox checked_box(const double lo[3], const double hi[3]);
+
 /// Marks sim busy for the lifetime of this guard.
 class BusyGuard {
  public:

@@ -20,12 +20,27 @@ LoadDistribution distribution_from_enum(int32_t distribution) {
   }
 }
 
+/// The group of a def given by its box (Load::region and the body's vertices inside it).
+void select_box(const ps_load_def& def, const Scene& scene, Load& load) {
+  if (!def.box_min || !def.box_max)
+    api_fail(PS_ERROR_INVALID_ARGUMENT,
+             "def.box_min and def.box_max: a load's box needs both corners (or neither)");
+  if (def.num_vertices > 0)
+    api_fail(PS_ERROR_INVALID_ARGUMENT,
+             "a load's group is given by vertices or by a box, not both (num_vertices = " +
+                 std::to_string(def.num_vertices) + " with a box)");
+  load.region = checked_box(def.box_min, def.box_max);
+  load.vertices = body_vertices_in(scene, def.body, *load.region, "the load's box");
+}
+
 /// The scene's Load a def describes (checked by the core's validate_scene when added).
-Load load_from_def(const ps_load_def& def) {
+Load load_from_def(const ps_load_def& def, const Scene& scene) {
   require_initialized(def.internal_cookie, kLoadCookie, "ps_load_def");
   Load load;
   load.body = def.body;
-  if (def.num_vertices > 0) {
+  if (def.box_min || def.box_max) {
+    select_box(def, scene, load);
+  } else if (def.num_vertices > 0) {
     require(def.vertices, "def.vertices (with num_vertices > 0)");
     load.vertices.assign(def.vertices, def.vertices + def.num_vertices);
   }
@@ -57,7 +72,7 @@ PS_API int32_t ps_sim_add_load(ps_sim* sim, const ps_load_def* def, int32_t* out
   return guarded(error_slot(sim), "ps_sim_add_load", [&] {
     require_idle(sim);
     require(def, "def");
-    const Load load = load_from_def(*def);
+    const Load load = load_from_def(*def, sim->scene);
     edit_scene(*sim, [&](Scene& scene) { scene.loads.push_back(load); });
     if (out_index) *out_index = static_cast<int32_t>(sim->scene.loads.size()) - 1;
   });

@@ -40,8 +40,16 @@ void set_obstacle_motion(ps_sim& sim, int32_t obstacle, const HandleMotion& moti
   edit_scene(sim, [&](Scene& scene) { scene.obstacles[obstacle].motion = motion; });
 }
 
-/// The box [lo, hi]; throws ApiError(PS_ERROR_INVALID_ARGUMENT) for a non-finite corner or
-/// lo above hi on some axis.
+/// Rebuilds the simulation with `handle` added; its index into *out_index (nullable).
+void add_handle(ps_sim& sim, Handle handle, const char* call, int32_t* out_index) {
+  Scene scene = sim.scene;
+  scene.handles.push_back(std::move(handle));
+  rebuild_scene(sim, std::move(scene), call);
+  if (out_index) *out_index = static_cast<int32_t>(sim.scene.handles.size()) - 1;
+}
+
+}  // namespace
+
 VertexBox checked_box(const double lo[3], const double hi[3]) {
   const char* axes = "xyz";
   for (int k = 0; k < 3; ++k) {
@@ -56,15 +64,6 @@ VertexBox checked_box(const double lo[3], const double hi[3]) {
   return {Vec3(lo[0], lo[1], lo[2]), Vec3(hi[0], hi[1], hi[2])};
 }
 
-/// Rebuilds the simulation with `handle` added; its index into *out_index (nullable).
-void add_handle(ps_sim& sim, Handle handle, const char* call, int32_t* out_index) {
-  Scene scene = sim.scene;
-  scene.handles.push_back(std::move(handle));
-  rebuild_scene(sim, std::move(scene), call);
-  if (out_index) *out_index = static_cast<int32_t>(sim.scene.handles.size()) - 1;
-}
-
-}  // namespace
 }  // namespace progsim::capi
 
 using namespace progsim;
@@ -90,18 +89,10 @@ PS_API int32_t ps_sim_add_handle_box(ps_sim* sim, int32_t body, const double box
     require_idle(sim);
     require(box_min, "box_min");
     require(box_max, "box_max");
-    const Scene& scene = sim->scene;
-    if (body < 0 || body >= static_cast<int32_t>(scene.bodies.size()))
-      api_fail(PS_ERROR_INVALID_SCENE, "body " + std::to_string(body) +
-                                           " does not exist (the scene has " +
-                                           std::to_string(scene.bodies.size()) + " bodies)");
     Handle handle;
     handle.body = body;
     handle.region = checked_box(box_min, box_max);
-    handle.vertices = handle.region->select(scene.bodies[body].mesh.vertices);
-    if (handle.vertices.empty())
-      api_fail(PS_ERROR_INVALID_SCENE,
-               "the box holds no vertex of body " + std::to_string(body) + "'s mesh");
+    handle.vertices = body_vertices_in(sim->scene, body, *handle.region, "the handle's box");
     add_handle(*sim, std::move(handle), "ps_sim_add_handle_box", out_index);
   });
 }

@@ -265,6 +265,19 @@ std::vector<int> VertexBox::select(const Positions& positions) const {
   return selected;
 }
 
+std::vector<int> body_vertices_in(const Scene& scene, int body, const VertexBox& box,
+                                  const std::string& what) {
+  if (body < 0 || body >= static_cast<int>(scene.bodies.size()))
+    fail(Status::invalid_scene, what + ": body " + std::to_string(body) +
+                                    " does not exist (the scene has " +
+                                    std::to_string(scene.bodies.size()) + " bodies)");
+  std::vector<int> selected = box.select(scene.bodies[body].mesh.vertices);
+  if (selected.empty())
+    fail(Status::invalid_scene,
+         what + ": the box holds no vertex of body " + std::to_string(body) + "'s mesh");
+  return selected;
+}
+
 void validate_motion(const HandleMotion& m, const std::string& where, Status status) {
   if (!m.velocity.allFinite() || !m.center.allFinite() || !m.offset.allFinite() ||
       !m.axis.allFinite() || !std::isfinite(m.angular_velocity))

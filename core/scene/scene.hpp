@@ -130,6 +130,14 @@ struct VertexBox {
   std::vector<int> select(const Positions& positions) const;
 };
 
+struct Scene;
+
+/// The vertices of body `body` of `scene` inside `box` (a group given by a region). Throws
+/// Error(invalid_scene), starting with `what`, for a body that does not exist or a box that holds
+/// no vertex of it.
+std::vector<int> body_vertices_in(const Scene& scene, int body, const VertexBox& box,
+                                  const std::string& what);
+
 /// Vertices of one body held on a scripted trajectory (Dirichlet boundary condition).
 struct Handle {
   int body = 0;               ///< index into Scene::bodies

@@ -332,3 +332,34 @@ def test_a_handle_box_holds_each_levels_own_vertices(box):
             assert held.sum() >= 4
             assert np.abs(moved[held]).max() == 0.0
             assert moved[~held, 2].min() < 0.0  # the rest sags
+
+
+def test_a_load_box_pushes_each_levels_own_vertices(box):
+    # Without gravity, a box around the whole solid with a total force F spread by mass
+    # accelerates every vertex of level l at a_l = F / (ρ V_l), V_l the level's own tet volume.
+    # The refined level's steps take the preview's velocity (VPD's velocity-only prediction,
+    # x̂ = xᵗ + h U v₀ᵗ): z_n − z_0 = −h² (a₀ n(n−1)/2 + a₁ n).
+    steps, force, density = 4, 3.0, 200.0
+    with progsim.Simulation(
+        box, effects=["elasticity"], density=density, newton_tolerance=1e-12
+    ) as sim:
+        with pytest.raises(progsim.InvalidArgumentError, match="not both"):
+            sim.add_load([0], box=((-1, -1, -1), (1, 1, 1)), force=(0, 0, -force))
+        with pytest.raises(progsim.InvalidArgumentError, match="not both"):
+            sim.add_load(force=(0, 0, -force))
+        with pytest.raises(progsim.InvalidSceneError, match="holds no vertex"):
+            sim.add_load(box=((5, 5, 5), (6, 6, 6)), force=(0, 0, -force))
+        assert sim.add_load(box=((-1, -1, -1), (1, 1, 1)), force=(0, 0, -force)) == 0
+        sim.step_preview(steps)
+        sim.refine()
+        n = np.arange(steps + 1)[:, None]
+        a = [
+            force / (density * tet_volumes(box.rest_positions(level), box.tets(level)).sum())
+            for level in range(2)
+        ]
+        assert abs(a[1] / a[0] - 1) > 1e-3  # else the prediction rule goes untested
+        for level in range(2):
+            moved = frames_of(sim, level) - box.rest_positions(level)
+            assert np.abs(moved[..., :2]).max() < 1e-9
+            expected = -(STEP**2) * (a[0] * n * (n - 1) / 2 + a[level] * n)
+            assert np.abs(moved[..., 2] - expected).max() < 1e-8

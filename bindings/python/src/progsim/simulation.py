@@ -1201,8 +1201,9 @@ class Simulation(NativeObject):
 
     def add_load(
         self,
-        vertices: Any,
+        vertices: Any = None,
         *,
+        box: Optional[Tuple[Any, Any]] = None,
         force: Optional[Sequence[float]] = None,
         distribution: str = "mass",
         moment: float = 0.0,
@@ -1217,7 +1218,11 @@ class Simulation(NativeObject):
         finest level's vertices, through the prolongation on coarse levels.
 
         Args:
-            vertices: vertex indices within the body's mesh, shape (k,), k >= 1.
+            vertices: vertex indices within the body's mesh, shape (k,), k >= 1; or None with
+                ``box``.
+            box: ``(box_min, box_max)``, instead of ``vertices``: the body's vertices inside
+                this axis-aligned box (m, boundary included). On VPD levels, which share no
+                vertices, each level takes its own vertices inside it.
             force: (Fx, Fy, Fz), N: the total force, or the force on each vertex with
                 ``distribution="per_vertex"``; default zero.
             distribution: ``"mass"`` (by lumped vertex mass, the default), ``"area"`` (by
@@ -1232,17 +1237,27 @@ class Simulation(NativeObject):
             The load's index (0, 1, ... in order of addition).
 
         Raises:
-            InvalidArgumentError: an unknown distribution, a vector without 3 components.
-            InvalidSceneError: no vertices, a vertex or body out of range, a non-finite value, a
-                zero moment axis, a negative ramp, a group on one line along the moment's axis.
+            InvalidArgumentError: an unknown distribution, a vector without 3 components, both
+                ``vertices`` and ``box`` (or neither), a box corner above the other.
+            InvalidSceneError: no vertices, a box holding none, a vertex or body out of range, a
+                non-finite value, a zero moment axis, a negative ramp, a group on one line along
+                the moment's axis.
         """
+        if (vertices is None) == (box is None):
+            raise InvalidArgumentError("add_load: give the group as vertices or as a box, not both")
         definition = ffi.new("ps_load_def*")
         lib.ps_load_def_init(definition)
-        indices = as_indices(vertices, "vertices", "(k,)")
-        buffer = ffi.from_buffer("int32_t[]", indices) if indices.size else ffi.NULL
         definition.body = int32_value(body, "body")
-        definition.vertices = buffer
-        definition.num_vertices = indices.size
+        # the buffers the def points to stay alive in these locals until the call returns
+        lo = hi = buffer = ffi.NULL
+        if box is not None:
+            lo, hi = vec3(box[0], "box[0]"), vec3(box[1], "box[1]")
+            definition.box_min, definition.box_max = lo, hi
+        else:
+            indices = as_indices(vertices, "vertices", "(k,)")
+            buffer = ffi.from_buffer("int32_t[]", indices) if indices.size else ffi.NULL
+            definition.vertices = buffer
+            definition.num_vertices = indices.size
         if force is not None:
             definition.force = three_floats(force, "force")
         definition.distribution = _choice(LOAD_DISTRIBUTIONS, distribution, "distribution")

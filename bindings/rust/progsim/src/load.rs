@@ -48,6 +48,11 @@ pub struct Load {
     pub moment: f64,
     /// s, ≥ 0; default 0 (the full load at once).
     pub ramp: f64,
+    /// The group as a region instead of `vertices` (which must then be empty): the body's
+    /// vertices inside the axis-aligned box `[min, max]` (m, boundary included). On VPD
+    /// levels, which share no vertices, each level takes its own vertices inside it. Default
+    /// `None`.
+    pub region: Option<[[f64; 3]; 2]>,
 }
 
 impl Default for Load {
@@ -61,6 +66,7 @@ impl Default for Load {
             moment_axis: raw.moment_axis,
             moment: raw.moment,
             ramp: raw.ramp,
+            region: None,
         }
     }
 }
@@ -76,7 +82,7 @@ fn raw_load_def() -> sys::ps_load_def {
 }
 
 impl Load {
-    /// The C def borrowing `self.vertices`: valid while `self` is.
+    /// The C def borrowing `self.vertices` and `self.region`: valid while `self` is.
     pub(crate) fn to_raw(&self) -> sys::ps_load_def {
         let mut raw = raw_load_def();
         raw.body = self.body;
@@ -87,6 +93,10 @@ impl Load {
         raw.moment_axis = self.moment_axis;
         raw.moment = self.moment;
         raw.ramp = self.ramp;
+        if let Some([min, max]) = &self.region {
+            raw.box_min = min.as_ptr();
+            raw.box_max = max.as_ptr();
+        }
         raw
     }
 }
@@ -101,7 +111,9 @@ mod tests {
         assert_eq!((load.body, load.moment, load.ramp), (0, 0.0, 0.0));
         assert_eq!(load.moment_axis, [0.0, 0.0, 1.0]);
         assert_eq!(load.distribution, LoadDistribution::Mass);
-        assert!(load.vertices.is_empty());
+        assert!(load.vertices.is_empty() && load.region.is_none());
+        let raw = load.to_raw();
+        assert!(raw.box_min.is_null() && raw.box_max.is_null());
     }
 
     #[test]
@@ -114,8 +126,11 @@ mod tests {
             moment_axis: [0.0, 1.0, 0.0],
             moment: 4.0,
             ramp: 0.5,
+            region: Some([[-1.0, -2.0, -3.0], [1.0, 2.0, 3.0]]),
         };
         let raw = load.to_raw();
+        let region = load.region.as_ref().unwrap();
+        assert_eq!((raw.box_min, raw.box_max), (region[0].as_ptr(), region[1].as_ptr()));
         assert_eq!((raw.body, raw.num_vertices), (1, 2));
         assert_eq!(raw.vertices, load.vertices.as_ptr());
         assert_eq!(raw.force, [1.0, 2.0, 3.0]);
