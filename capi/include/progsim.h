@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 17
+#define PS_VERSION_MINOR 18
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -845,6 +845,23 @@ PS_API int32_t ps_sim_step_preview(ps_sim* sim, int32_t steps);
 PS_API int32_t ps_sim_refine(ps_sim* sim);
 
 /**
+ * Progressive animation only: animates the next level over the previewed steps first_step to
+ * last_step only (0 <= first_step < last_step <= the previewed steps), so that time windows of
+ * a long animation can be refined apart, on several machines, and joined. Its frame 0 is the
+ * animation's frame first_step (ps_dynamic_level_stats.first_step): for first_step = 0 as
+ * ps_sim_refine(), else the coarser level's frame first_step refined toward P(x) by PSQ's safe
+ * refinement (PD §4.6's vertical warm start) with velocities U v, at that frame's time. The
+ * steps then run as in ps_sim_refine(); a window of the whole span is ps_sim_refine(). A level
+ * that is a window cannot be refined further. Progress phase "refine" (done, total = the
+ * window's steps).
+ * Errors (the state is unchanged): as ps_sim_refine(), and PS_ERROR_INVALID_ARGUMENT for a
+ * window outside the previewed steps or a simulation that is not a progressive animation;
+ * PS_ERROR_WRONG_CALL_ORDER above a level that is a window; PS_ERROR_UNSUPPORTED for a window
+ * after frame 0 of a solid under contact (tets have no safe vertical refinement).
+ */
+PS_API int32_t ps_sim_refine_window(ps_sim* sim, int32_t first_step, int32_t last_step);
+
+/**
  * Solves again at the current time and loads until the level is at equilibrium (a Newton
  * solve meets the tolerance with every face under its own strain limit) or `max_solves` solves
  * were made: after a refinement or a parameter change. *equilibrium (nullable) receives 1 if
@@ -1028,6 +1045,7 @@ typedef struct ps_dynamic_level_stats {
   int32_t steps;             /**< steps animated at this level */
   int32_t newton_iterations; /**< over its steps */
   int32_t converged_steps;   /**< steps whose Newton solve met the tolerance */
+  int32_t first_step;        /**< its frame 0 is the animation's frame first_step (a window) */
   double seconds;            /**< wall time of its steps, s */
 } ps_dynamic_level_stats;
 

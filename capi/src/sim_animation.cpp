@@ -105,6 +105,7 @@ PS_API int32_t ps_sim_get_dynamic_level_stats(const ps_sim* sim, int32_t level,
     stats.steps = static_cast<int32_t>(r.steps.size());
     stats.newton_iterations = r.newton_iterations;
     stats.converged_steps = r.converged_steps;
+    stats.first_step = r.first_step;
     stats.seconds = r.seconds;
     *out = stats;
   });

@@ -63,23 +63,38 @@ StepRecord AnimatedLevels::step_preview() {
   return step;
 }
 
-void AnimatedLevels::check_refinable() const {
+StepWindow AnimatedLevels::check_refinable(StepWindow window) const {
   if (level() >= finest_)
     fail(Status::out_of_range,
          "level " + std::to_string(level()) + " is the finest level; there is nothing to refine");
-  if (trajectories_[level()].num_frames() < 2)
-    fail(Status::wrong_call_order, "refine: preview at least one step first");
+  const DynamicLevelRecord& coarse = records_[level()];
+  const int steps = trajectories_[level()].num_frames() - 1;
+  if (coarse.first_step != 0 || coarse.steps.size() != records_[0].steps.size())
+    fail(Status::wrong_call_order, "refine: level " + std::to_string(level()) +
+                                       " animates a window of the preview's steps only; a finer "
+                                       "level needs it over the whole span");
+  if (steps < 1) fail(Status::wrong_call_order, "refine: preview at least one step first");
+  if (window.last < 0) window.last = steps;
+  if (window.first < 0 || window.first >= window.last || window.last > steps)
+    fail(Status::invalid_argument, "refine: the window of steps " + std::to_string(window.first) +
+                                       " to " + std::to_string(window.last) +
+                                       " is not within the previewed steps 0 to " +
+                                       std::to_string(steps) + " (first < last)");
+  return window;
 }
 
-void AnimatedLevels::refine(std::unique_ptr<LevelSimulation> sim, const LevelTransfer& transfer,
+void AnimatedLevels::refine(const LevelFactory& make, const LevelTransfer& transfer,
                             const ProgressiveSettings& settings, double time_step,
-                            const RefineProgress& progress) {
-  check_refinable();
+                            StepWindow window, const RefineProgress& progress) {
+  window = check_refinable(window);
   const int coarse = level();
+  const CoarserLevel from{&trajectories_[coarse], &masses_[coarse], &records_[0], coarse};
+  std::unique_ptr<LevelSimulation> sim = make({});
+  if (window.first > 0) sim = make(window_start(*sim, from, transfer, window));
   Trajectory frames(coarse + 1, sim->model().rest.num_vertices());
   DynamicLevelRecord record = start_record(*sim);
-  const CoarserLevel from{&trajectories_[coarse], &masses_[coarse], &records_[0], coarse};
-  animate_finer_level(*sim, from, transfer, settings, time_step, progress, frames, record);
+  record.first_step = window.first;
+  animate_finer_level(*sim, from, transfer, settings, time_step, window, progress, frames, record);
   masses_.push_back(sim->model().vertex_masses);
   trajectories_.push_back(std::move(frames));
   records_.push_back(std::move(record));

@@ -2,6 +2,7 @@
 /// @file The levels a progressive animation has computed so far: the live preview (level 0) and,
 /// per level, its frames (streamed to disk), its record and its masses. Both progressive
 /// animation drivers (PD for shells, VPD for solids) keep their levels in one.
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -30,15 +31,18 @@ class AnimatedLevels {
   void update_preview_scene(const Scene& current, const Scene& updated, const Scene& preview_scene);
   /// One preview step, recorded. Throws Error(wrong_call_order) once a finer level exists.
   StepRecord step_preview();
-  /// Animates `sim` (level level() + 1 at its initial state) over the previewed steps through
-  /// `transfer` (animate_finer_level) and keeps it. Throws Error(out_of_range) at the finest
-  /// level, Error(wrong_call_order) before a preview step, Error(cancelled) from `progress`;
-  /// on Error nothing changed.
-  void refine(std::unique_ptr<LevelSimulation> sim, const LevelTransfer& transfer,
-              const ProgressiveSettings& settings, double time_step,
+  /// Makes level level() + 1's simulation from a start (LevelStart{}: its initial state).
+  using LevelFactory = std::function<std::unique_ptr<LevelSimulation>(LevelStart)>;
+  /// Animates level level() + 1, made by `make`, over `window` of the previewed steps through
+  /// `transfer` (window_start, animate_finer_level) and keeps it. Throws Error(out_of_range) at
+  /// the finest level, Error(wrong_call_order) before a preview step or above a level that
+  /// animates a window only, Error(invalid_argument) for a window outside the previewed steps,
+  /// Error(cancelled) from `progress`; on Error nothing changed.
+  void refine(const LevelFactory& make, const LevelTransfer& transfer,
+              const ProgressiveSettings& settings, double time_step, StepWindow window,
               const RefineProgress& progress);
-  /// Throws the errors refine() throws before any work.
-  void check_refinable() const;
+  /// Throws the errors refine() throws before any work (`window` resolved against the steps).
+  StepWindow check_refinable(StepWindow window = {}) const;
   /// Throws Error(wrong_call_order), naming `what`, once a finer level exists.
   void check_preview_open(const char* what) const;
 

@@ -10,9 +10,10 @@ DynamicLevelRecord start_record(const LevelSimulation& sim) {
 }
 
 double com_deviation(const Vec3& com, const DynamicLevelRecord& level,
-                     const DynamicLevelRecord& reference, int t) {
-  const Vec3 reference_moved =
-      reference.steps.at(t).motion.center_of_mass - reference.start_center_of_mass;
+                     const DynamicLevelRecord& reference, int t, int first) {
+  const Vec3 reference_start = first == 0 ? reference.start_center_of_mass
+                                          : reference.steps.at(first - 1).motion.center_of_mass;
+  const Vec3 reference_moved = reference.steps.at(t).motion.center_of_mass - reference_start;
   return ((com - level.start_center_of_mass) - reference_moved).norm();
 }
 

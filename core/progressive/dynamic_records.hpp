@@ -35,6 +35,7 @@ struct DynamicStepRecord {
 /// One level of a progressive animation: its size, work and per-step records.
 struct DynamicLevelRecord {
   int vertices = 0;
+  int first_step = 0;  ///< the level's frame 0 is the animation's frame first_step (a window)
   Vec3 start_center_of_mass = Vec3::Zero();  ///< at frame 0 (m)
   double seconds = 0.0;                      ///< wall time of the level's steps
   int newton_iterations = 0;                 ///< over its steps
@@ -53,9 +54,10 @@ void add_dynamic_step(DynamicLevelRecord& record, const StepRecord& step, double
 DynamicLevelRecord start_record(const LevelSimulation& sim);
 
 /// DynamicStepRecord::com_deviation of a step of `level` ending with centre of mass `com`
-/// against step `t` (0-based) of `reference`.
+/// against step `t` (0-based) of `reference`: how far each moved since frame `first` (the
+/// level's first frame; `reference`'s frame `first`).
 double com_deviation(const Vec3& com, const DynamicLevelRecord& level,
-                     const DynamicLevelRecord& reference, int t);
+                     const DynamicLevelRecord& reference, int t, int first = 0);
 
 /// Called during refine() after each step with (steps done, steps in all); returning false
 /// cancels the refinement.

@@ -48,30 +48,49 @@ void check_per_frame(const LevelSimulation& sim, const LevelTransfer& p,
 
 }  // namespace
 
+LevelStart window_start(const LevelSimulation& at_rest, const CoarserLevel& coarse,
+                        const LevelTransfer& transfer, const StepWindow& window) {
+  if (window.first == 0) return {};
+  if (!transfer.vertical && at_rest.contact())
+    fail(Status::unsupported,
+         "a window starting after frame 0 starts from the coarser frame refined vertically, which "
+         "needs a safe vertical refinement under contact; this hierarchy (tets) has none");
+  Vector x, v;
+  coarse.frames->read(window.first, x, v);
+  const Vector target = transfer.positions(x);
+  LevelStart start;
+  start.positions = transfer.vertical ? transfer.vertical(x, target, at_rest) : target;
+  start.steps_taken = window.first;
+  start.fit_to_start = true;  // a refined state: offsets and strain limits fitted (PSQ §4.4)
+  return start;
+}
+
 void animate_finer_level(LevelSimulation& sim, const CoarserLevel& coarse,
                          const LevelTransfer& transfer, const ProgressiveSettings& settings,
-                         double time_step, const RefineProgress& progress, Trajectory& frames,
-                         DynamicLevelRecord& record) {
+                         double time_step, const StepWindow& window, const RefineProgress& progress,
+                         Trajectory& frames, DynamicLevelRecord& record) {
   check_per_frame(sim, transfer, settings);
-  const int steps = coarse.frames->num_frames() - 1;
+  const int steps = window.last - window.first;
   Vector x_now, v_now, x_next, v_next;
-  coarse.frames->read(0, x_now, v_now);
-  sim.set_velocities(transfer.velocities(v_now));  // v_{l+1}^0 = U v_l^0
+  coarse.frames->read(window.first, x_now, v_now);
+  sim.set_velocities(transfer.velocities(v_now));  // v_{l+1}^first = U v_l^first
   frames.append(sim.dofs(), sim.velocities());
   const ConsistencyProjection projection(*transfer.intrinsic, sim.model().vertex_masses,
                                          *coarse.masses);
-  for (int t = 0; t < steps; ++t) {
+  for (int t = window.first; t < window.last; ++t) {
     coarse.frames->read(t + 1, x_next, v_next);
     const StepRecord step =  // PD eq. 6
         sim.step(step_targets(sim, transfer, settings, time_step, x_now, v_now, x_next));
     frames.append(sim.dofs(), sim.velocities());
-    const double deviation =
-        step.motion ? com_deviation(step.motion->center_of_mass, record, *coarse.preview, t) : 0.0;
+    const double deviation = step.motion ? com_deviation(step.motion->center_of_mass, record,
+                                                         *coarse.preview, t, window.first)
+                                         : 0.0;
     add_dynamic_step(record, step, deviation, projection.distance(sim.dofs(), x_next));
-    if (progress && !progress(t + 1, steps))
+    const int done = t + 1 - window.first;
+    if (progress && !progress(done, steps))
       fail(Status::cancelled, "refining level " + std::to_string(coarse.index) + " into level " +
                                   std::to_string(coarse.index + 1) + " was cancelled at step " +
-                                  std::to_string(t + 1) + " of " + std::to_string(steps));
+                                  std::to_string(done) + " of " + std::to_string(steps));
     std::swap(x_now, x_next);
     std::swap(v_now, v_next);
   }

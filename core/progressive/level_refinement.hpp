@@ -26,6 +26,15 @@ struct LevelTransfer {
   Vertical vertical;  ///< empty: none (then per_frame takes P(frame) and refuses contact)
 };
 
+/// The steps of the coarser level's span a finer level animates: from frame `first` to frame
+/// `last` (first < last); last < 0 means the last previewed frame. A window that starts after
+/// frame 0 starts from the coarser frame `first` refined vertically (LevelTransfer::vertical,
+/// PD §4.6's vertical warm start), so windows can be animated apart (on several machines).
+struct StepWindow {
+  int first = 0;
+  int last = -1;
+};
+
 /// The coarser level an animation refines: its frames, its masses and the preview's record
 /// (the reference of the centre-of-mass deviation).
 struct CoarserLevel {
@@ -35,8 +44,17 @@ struct CoarserLevel {
   int index = 0;  ///< the coarser level's number, for messages
 };
 
-/// Animates `sim` (the finer level at its initial state) over every step of `coarse`: its
-/// velocities start as U v_l⁰, each step's x̂ follows `prediction` and, with a consistency
+/// Where a finer level's animation of `window` (resolved: 0 ≤ first < last) starts: empty for
+/// frame 0 (the level's initial state); else the coarser frame `first` refined vertically
+/// toward P(x_l^first) among the surroundings of `at_rest` (the finer level at its initial
+/// state), at the time of frame `first`. Throws Error(unsupported) under contact without a
+/// vertical refinement (solids).
+LevelStart window_start(const LevelSimulation& at_rest, const CoarserLevel& coarse,
+                        const LevelTransfer& transfer, const StepWindow& window);
+
+/// Animates `sim` (the finer level at the state of frame window.first, window resolved) over the
+/// window's steps of `coarse`: its
+/// velocities start as U v_l^first, each step's x̂ follows `prediction` and, with a consistency
 /// weight, the penalty pulls toward P(x_l^{t+1}). With the per_frame prediction each step starts
 /// from the vertical refinement of x_l^{t+1} instead of the level's own xᵗ (PSQ per frame, PD
 /// §4.3 fn. 3). Appends every frame to `frames` and every step to `record`. Throws
@@ -44,7 +62,7 @@ struct CoarserLevel {
 /// and no vertical refinement (solids).
 void animate_finer_level(LevelSimulation& sim, const CoarserLevel& coarse,
                          const LevelTransfer& transfer, const ProgressiveSettings& settings,
-                         double time_step, const RefineProgress& progress, Trajectory& frames,
-                         DynamicLevelRecord& record);
+                         double time_step, const StepWindow& window, const RefineProgress& progress,
+                         Trajectory& frames, DynamicLevelRecord& record);
 
 }  // namespace progsim

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "progressive/dynamic_records.hpp"
+#include "progressive/level_refinement.hpp"
 #include "scene/scene.hpp"
 #include "sim/level_simulation.hpp"
 
@@ -31,7 +32,13 @@ class ProgressiveAnimation {
   virtual StepRecord step_preview() = 0;
   /// Animates level level() + 1 over every previewed step (Error(out_of_range) at the finest,
   /// Error(wrong_call_order) before a preview step, Error(cancelled) when `progress` says stop).
-  virtual void refine(const RefineProgress& progress = nullptr) = 0;
+  void refine(const RefineProgress& progress = nullptr) { refine_window(StepWindow{}, progress); }
+  /// Animates level level() + 1 over `window` of the previewed steps only, its frame 0 the
+  /// coarser frame window.first refined vertically (PD §4.6): windows of the finest level can be
+  /// animated apart and joined. Errors as refine(), and Error(invalid_argument) for a window
+  /// outside the previewed steps, Error(wrong_call_order) above a level that is a window,
+  /// Error(unsupported) for a window after frame 0 of a solid under contact.
+  virtual void refine_window(StepWindow window, const RefineProgress& progress = nullptr) = 0;
   /// The finest level computed so far (0: only the preview).
   virtual int level() const = 0;
   /// The index of the finest level.
@@ -39,7 +46,8 @@ class ProgressiveAnimation {
   virtual const Scene& scene() const = 0;
   /// The preview's simulation (level 0, live).
   virtual const LevelSimulation& preview() const = 0;
-  /// Frames of a computed level (steps + 1). Error(out_of_range) for others.
+  /// Frames of a computed level (its steps + 1; frame 0 is the animation's frame
+  /// record(level).first_step). Error(out_of_range) for others.
   virtual int num_frames(int level) const = 0;
   /// Positions and velocities (|V_level| × 3) of a frame of a computed level.
   virtual void read_frame(int level, int frame, Positions& positions,

@@ -55,12 +55,13 @@ ProgressiveDynamics::ProgressiveDynamics(Scene scene,
 
 ProgressiveDynamics::~ProgressiveDynamics() = default;
 
-std::unique_ptr<LevelSimulation> ProgressiveDynamics::make_level(int level) const {
+std::unique_ptr<LevelSimulation> ProgressiveDynamics::make_level(int level,
+                                                                 LevelStart start) const {
   SimulationLevel spec{hierarchy_, level, {}};
   if (level < finest())
     spec.to_finest = operators_->to_finest(level, scene_.progressive.prolongation);
   if (level > 0) spec.consistency_weight = scene_.progressive.consistency_weight;
-  return std::make_unique<LevelSimulation>(scene_, std::move(spec));
+  return std::make_unique<LevelSimulation>(scene_, std::move(spec), std::move(start));
 }
 
 std::unique_ptr<LevelSimulation> ProgressiveDynamics::direct_level(int level) const {
@@ -85,12 +86,12 @@ void ProgressiveDynamics::set_preview_velocities(const Vector& velocities) {
   levels_.set_preview_velocities(velocities);
 }
 
-void ProgressiveDynamics::refine(const RefineProgress& progress) {
-  levels_.check_refinable();
+void ProgressiveDynamics::refine_window(StepWindow window, const RefineProgress& progress) {
+  levels_.check_refinable(window);
   const int coarse = level();
-  levels_.refine(make_level(coarse + 1),
+  levels_.refine([&](LevelStart start) { return make_level(coarse + 1, std::move(start)); },
                  shell_transfer(*operators_->next(coarse), *hierarchy_, coarse), scene_.progressive,
-                 scene_.time_step, progress);
+                 scene_.time_step, window, progress);
 }
 
 }  // namespace progsim

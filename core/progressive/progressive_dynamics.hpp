@@ -46,7 +46,7 @@ class ProgressiveDynamics final : public ProgressiveAnimation {
   /// optional consistency penalty. Throws Error(out_of_range) at the finest level,
   /// Error(wrong_call_order) before any preview step, Error(cancelled) if `progress` says stop;
   /// on Error nothing changed.
-  void refine(const RefineProgress& progress = nullptr) override;
+  void refine_window(StepWindow window, const RefineProgress& progress = nullptr) override;
   /// Discards every level's frames and starts the preview again from the initial state (after
   /// update_scene(), to preview a variation).
   void restart() override;
@@ -90,7 +90,8 @@ class ProgressiveDynamics final : public ProgressiveAnimation {
   /// Level `level` at its initial state, solved with the scene's own solver (PD solves each
   /// step to the tolerance, unlike PSQ's capped previews): the proxy energy below the finest
   /// level, the consistency penalty above the coarsest.
-  std::unique_ptr<LevelSimulation> make_level(int level) const;
+  /// Level `level`'s simulation from `start` (its initial state by default).
+  std::unique_ptr<LevelSimulation> make_level(int level, LevelStart start = {}) const;
 
   Scene scene_;
   std::shared_ptr<const MeshHierarchy> hierarchy_;

@@ -113,10 +113,10 @@ Scene VolumetricDynamics::level_scene(const Scene& scene, int level) const {
   return s;
 }
 
-std::unique_ptr<LevelSimulation> VolumetricDynamics::make_level(int level) const {
+std::unique_ptr<LevelSimulation> VolumetricDynamics::make_level(int level, LevelStart start) const {
   SimulationLevel own;  // the level's own mesh and elastics (VPD §3.2)
   if (level > 0) own.consistency_weight = scene_.progressive.consistency_weight;
-  return std::make_unique<LevelSimulation>(level_scene(level), std::move(own));
+  return std::make_unique<LevelSimulation>(level_scene(level), std::move(own), std::move(start));
 }
 
 std::unique_ptr<LevelSimulation> VolumetricDynamics::direct_level(int level) const {
@@ -124,11 +124,12 @@ std::unique_ptr<LevelSimulation> VolumetricDynamics::direct_level(int level) con
   return std::make_unique<LevelSimulation>(level_scene(level));
 }
 
-void VolumetricDynamics::refine(const RefineProgress& progress) {
-  levels_.check_refinable();
+void VolumetricDynamics::refine_window(StepWindow window, const RefineProgress& progress) {
+  levels_.check_refinable(window);
   const int coarse = level();
-  levels_.refine(make_level(coarse + 1), tet_transfer(hierarchy_->to_finer[coarse]),
-                 scene_.progressive, scene_.time_step, progress);
+  levels_.refine([&](LevelStart start) { return make_level(coarse + 1, std::move(start)); },
+                 tet_transfer(hierarchy_->to_finer[coarse]), scene_.progressive, scene_.time_step,
+                 window, progress);
 }
 
 }  // namespace progsim

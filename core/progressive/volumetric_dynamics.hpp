@@ -49,7 +49,7 @@ class VolumetricDynamics final : public ProgressiveAnimation {
   /// from its rest shape with the prolonged initial velocities. Throws Error(out_of_range) at the
   /// finest level, Error(wrong_call_order) before any preview step, Error(cancelled) if
   /// `progress` says stop; on Error nothing changed.
-  void refine(const RefineProgress& progress = nullptr) override;
+  void refine_window(StepWindow window, const RefineProgress& progress = nullptr) override;
 
   const char* method() const override { return "volumetric progressive dynamics"; }
   /// The finest level computed so far (0: only the preview).
@@ -80,7 +80,8 @@ class VolumetricDynamics final : public ProgressiveAnimation {
  private:
   /// `scene` with its body's mesh and tets replaced by level `level`'s.
   Scene level_scene(const Scene& scene, int level) const;
-  std::unique_ptr<LevelSimulation> make_level(int level) const;
+  /// Level `level`'s simulation from `start` (its initial state by default).
+  std::unique_ptr<LevelSimulation> make_level(int level, LevelStart start = {}) const;
 
   Scene scene_;
   std::shared_ptr<const TetHierarchy> hierarchy_;

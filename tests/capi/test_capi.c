@@ -108,6 +108,10 @@ static void test_full_cycle(void) {
   CHECK(ps_sim_set_progress_callback(sim, call_back_in, sim) == PS_OK);
   CHECK(ps_sim_step_preview(sim, 1) == PS_OK);
   CHECK_ERROR(ps_sim_refine(sim), PS_ERROR_OUT_OF_RANGE, ps_sim_last_error(sim), "finest level 0");
+  CHECK_ERROR(ps_sim_refine_window(sim, 0, 1), PS_ERROR_INVALID_ARGUMENT, ps_sim_last_error(sim),
+              "progressive animation");
+  CHECK_ERROR(ps_sim_refine_window(NULL, 0, 1), PS_ERROR_NULL_ARGUMENT, ps_last_error(),
+              "sim is NULL");
   const double offset[3] = {0.1, 0, 0};
   CHECK(ps_sim_set_handle_motion(sim, 0, NULL, NULL, NULL, 0.0, offset) == PS_OK);
   CHECK(ps_sim_set_progress_callback(sim, NULL, NULL) == PS_OK);

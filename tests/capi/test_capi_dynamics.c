@@ -1,7 +1,8 @@
 /*
  * A progressive animation (Progressive Dynamics) through the C ABI: a free-falling cloth on
  * three levels against the closed form of implicit Euler, frames and velocities read back,
- * initial velocities, restart, cancelling a refinement, scenes, and every documented misuse.
+ * initial velocities, restart, cancelling a refinement, time windows, scenes, and every
+ * documented misuse.
  * Exits non-zero (printing each failed check) on failure.
  */
 #include <math.h>
@@ -274,6 +275,41 @@ static void test_misuse(const ps_hierarchy* h) {
 }
 
 /* A dynamic scene with coarse levels is a progressive animation; its options come through. */
+/* A window of steps 2..kSteps of level 1 continues the free fall from the animation's frame
+ * 2 (the coarser frame refined, velocities prolonged, at t = 2h); its frames are numbered from
+ * the window's start; misuse is refused naming it. */
+static void test_window(const ps_hierarchy* h) {
+  ps_sim* sim = falling_cloth(h);
+  if (!sim) return;
+  const int32_t first = 2;
+  CHECK(ps_sim_step_preview(sim, kSteps) == PS_OK);
+  CHECK(ps_sim_refine_window(sim, 3, 2) == PS_ERROR_INVALID_ARGUMENT);
+  CHECK(strstr(ps_sim_last_error(sim), "window of steps 3 to 2") != NULL);
+  CHECK(ps_sim_refine_window(sim, 0, -1) == PS_ERROR_INVALID_ARGUMENT);
+  CHECK(ps_sim_refine_window(sim, 0, kSteps + 1) == PS_ERROR_INVALID_ARGUMENT);
+  CHECK(ps_sim_refine_window(sim, first, kSteps) == PS_OK);
+  int32_t frames = 0;
+  CHECK(ps_sim_num_frames(sim, 1, &frames) == PS_OK && frames == kSteps - first + 1);
+  ps_dynamic_level_stats stats;
+  CHECK(ps_sim_get_dynamic_level_stats(sim, 1, &stats) == PS_OK);
+  CHECK(stats.first_step == first && stats.steps == kSteps - first);
+  size_t count = 0;
+  CHECK(ps_sim_get_frame_positions(sim, 1, 0, NULL, 0, &count) == PS_OK && count > 0);
+  double* x = malloc(count * sizeof *x);
+  double* v = malloc(count * sizeof *v);
+  for (int32_t k = 0; x && v && k < frames; ++k) {
+    CHECK(ps_sim_get_frame_positions(sim, 1, k, x, count, &count) == PS_OK);
+    CHECK(ps_sim_get_frame_velocities(sim, 1, k, v, count, &count) == PS_OK);
+    CHECK(fabs(x[2] - fallen(first + k)) < 1e-9);  /* vertex 0 started at z = 0 */
+    CHECK(fabs(v[2] + kGravity * kStep * (first + k)) < 1e-8);
+  }
+  free(x);
+  free(v);
+  CHECK(ps_sim_refine(sim) == PS_ERROR_WRONG_CALL_ORDER);  /* above a window */
+  CHECK(strstr(ps_sim_last_error(sim), "window") != NULL);
+  ps_sim_destroy(sim);
+}
+
 static void test_scene(void) {
   const char* json =
       "{\"simulation\": {\"mode\": \"dynamic\", \"time_step\": 0.01},"
@@ -305,6 +341,7 @@ int main(void) {
     test_free_fall_on_three_levels(h);
     test_velocities_and_restart(h);
     test_misuse(h);
+    test_window(h);
     CHECK(ps_hierarchy_destroy(h) == PS_OK);
   }
   test_scene();

@@ -375,3 +375,90 @@ TEST(ProgressiveDynamics, TheConsistencyPenaltyPullsALevelTowardTheCoarserOneOnl
   EXPECT_GT(pulled_counter, 0);
   EXPECT_LT(pulled, 0.7 * free);
 }
+
+TEST(ProgressiveDynamics, AWindowFromFrameZeroIsTheWholeRefinementsStartBitForBit) {
+  // Windows of the finest level refined apart (on several machines) and joined: the first
+  // window is the serial refinement's start, frame for frame and bit for bit.
+  const int steps = 16, cut = 7;
+  Scene scene = swinging_cloth(steps);
+  scene.progressive.level_vertices = {60};
+  ProgressiveDynamics serial(scene), windowed(scene);
+  for (int n = 0; n < steps; ++n) {
+    serial.step_preview();
+    windowed.step_preview();
+  }
+  serial.refine();
+  windowed.refine_window({0, cut});
+  ASSERT_EQ(windowed.num_frames(1), cut + 1);
+  EXPECT_EQ(windowed.record(1).first_step, 0);
+  EXPECT_EQ(windowed.record(1).steps.size(), std::size_t(cut));
+  Positions x, v, xw, vw;
+  for (int frame = 0; frame <= cut; ++frame) {
+    serial.read_frame(1, frame, x, v);
+    windowed.read_frame(1, frame, xw, vw);
+    EXPECT_EQ((x - xw).cwiseAbs().maxCoeff(), 0.0) << "frame " << frame;
+    EXPECT_EQ((v - vw).cwiseAbs().maxCoeff(), 0.0) << "frame " << frame;
+  }
+}
+
+TEST(ProgressiveDynamics, ALaterWindowContinuesAFreeFallAtItsOwnTime) {
+  // A window from frame 5 starts from the coarser frame 5 refined (a rigid translation in a
+  // free fall) with the prolonged velocities U v, at t = 5h: implicit Euler from rest gives
+  // x^n = x^0 − g h² n(n+1)/2 and v^n = −g h n at the animation's frame n = 5 + k. A window
+  // that started at rest, at t = 0 or with the level's own v would miss both.
+  const int steps = 12, first = 5;
+  Scene scene = falling_cloth(steps);
+  scene.solver.tolerance = 1e-12;
+  ProgressiveDynamics pd(scene);
+  for (int n = 0; n < steps; ++n) pd.step_preview();
+  pd.refine_window({first, steps});
+  ASSERT_EQ(pd.num_frames(1), steps - first + 1);
+  EXPECT_EQ(pd.record(1).first_step, first);
+  const Positions rest = pd.hierarchy().levels[1].rest.vertices;
+  const double h = scene.time_step, g = 9.81;
+  Positions x, v;
+  for (int k = 0; k + first <= steps; ++k) {
+    const int n = k + first;
+    pd.read_frame(1, k, x, v);
+    const double drop = g * h * h * n * (n + 1) / 2.0;
+    const double worst =
+        ((x - rest).rowwise() - Vec3(0, 0, -drop).transpose()).cwiseAbs().maxCoeff();
+    EXPECT_LT(worst, 1e-9) << "frame " << n;
+    EXPECT_NEAR(v(0, 2), -g * h * n, 1e-8) << "frame " << n;
+  }
+  EXPECT_EQ(pd.record(1).steps.front().time, (first + 1) * h);
+  EXPECT_LT(pd.record(1).steps.back().com_deviation, 1e-9);  // moved as the preview did since 5
+}
+
+TEST(ProgressiveDynamics, WindowsUnderContactStartSafelyAndStayIntersectionFree) {
+  // The window's first frame is the coarser frame refined by PSQ's safe refinement among the
+  // sphere: every frame of the window is crossing-free (CGAL's exact predicates).
+  Scene scene = cloth_scene(horizontal_cloth(0.6, 16, 0.17), 0.0, 0.01, 25);
+  scene.obstacles.push_back(static_obstacle("sphere", make_sphere(0.15, 3), 0.0));
+  scene.progressive.level_vertices = {40};
+  ProgressiveDynamics pd(scene);
+  for (int n = 0; n < 25; ++n) pd.step_preview();
+  pd.refine_window({12, 25});  // the cloth lies on the sphere from about step 8
+  ASSERT_EQ(pd.num_frames(1), 14);
+  expect_frames_intersection_free(pd, 1);
+  EXPECT_EQ(pd.record(1).converged_steps, 13);
+}
+
+TEST(ProgressiveDynamics, WindowMisuseIsRefusedAndChangesNothing) {
+  Scene scene = falling_cloth(4);
+  ProgressiveDynamics pd(scene);
+  for (int n = 0; n < 4; ++n) pd.step_preview();
+  expect_error([&] { pd.refine_window({3, 2}); }, Status::invalid_argument,
+               {"window of steps 3 to 2", "previewed steps 0 to 4"});
+  expect_error([&] { pd.refine_window({-1, 2}); }, Status::invalid_argument, {"-1"});
+  expect_error([&] { pd.refine_window({0, 5}); }, Status::invalid_argument, {"0 to 4"});
+  EXPECT_EQ(pd.level(), 0);
+  pd.refine_window({1, 3});
+  expect_error([&] { pd.refine(); }, Status::wrong_call_order, {"window", "whole span"});
+  EXPECT_EQ(pd.level(), 1);
+  pd.restart();
+  for (int n = 0; n < 4; ++n) pd.step_preview();
+  pd.refine_window({0, 4});  // the whole span: a finer level may follow
+  pd.refine();
+  EXPECT_EQ(pd.level(), 2);
+}

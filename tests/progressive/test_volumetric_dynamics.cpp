@@ -16,8 +16,10 @@
 #include "mesh/tet_boundary.hpp"
 #include "mesh/tet_generators.hpp"
 #include "progressive/volumetric_dynamics.hpp"
+#include "support/expect_error.hpp"
 
 using namespace progsim;
+using progsim::test_support::expect_error;
 
 namespace {
 
@@ -163,12 +165,7 @@ TEST(VolumetricDynamics, MisuseIsRefusedNamingIt) {
   quasistatic.mode = StepMode::quasistatic;
   EXPECT_THROW(VolumetricDynamics(quasistatic, levels), Error);
   Scene other = jelly_scene(levels->levels[0], 0.1);  // the body is not the finest level
-  try {
-    VolumetricDynamics(other, levels);
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.status(), Status::invalid_argument);
-  }
+  expect_error([&] { VolumetricDynamics(other, levels); }, Status::invalid_argument, {});
   Scene per_frame = scene;  // restarting each step from the coarse frame: no safe tet refinement
   per_frame.effects.enable(Effect::contact);
   per_frame.ground.enabled = true;
@@ -176,24 +173,25 @@ TEST(VolumetricDynamics, MisuseIsRefusedNamingIt) {
   per_frame.progressive.prediction = DynamicsPrediction::per_frame;
   VolumetricDynamics restarted(per_frame, levels);
   restarted.step_preview();
-  try {
-    restarted.refine();
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.status(), Status::unsupported);
-    EXPECT_NE(std::string(e.what()).find("per_frame"), std::string::npos) << e.what();
-  }
+  expect_error([&] { restarted.refine(); }, Status::unsupported, {"per_frame"});
+  Scene grounded = scene;  // a later window starts from a coarse frame refined vertically
+  grounded.effects.enable(Effect::contact);
+  grounded.ground.enabled = true;
+  grounded.ground.height = -1.0;
+  VolumetricDynamics windowed(grounded, levels);
+  windowed.step_preview();
+  windowed.step_preview();
+  expect_error([&] { windowed.refine_window({1, 2}); }, Status::unsupported,
+               {"window starting after frame 0", "tets"});
+  EXPECT_EQ(windowed.level(), 0);
+  windowed.refine_window({0, 1});  // from frame 0 no vertical refinement is needed
+  EXPECT_EQ(windowed.num_frames(1), 2);
   EXPECT_EQ(restarted.level(), 0);
   Scene handled = scene;
   Handle listed;  // by index: no counterpart on the coarse levels
   listed.vertices = {0};
   handled.handles.push_back(listed);
-  try {
-    VolumetricDynamics(handled, levels);
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.status(), Status::unsupported);
-  }
+  expect_error([&] { VolumetricDynamics(handled, levels); }, Status::unsupported, {});
 }
 
 TEST(VolumetricDynamics, AHandleBoxClampsItsVerticesOnEveryLevel) {
@@ -238,13 +236,6 @@ TEST(VolumetricDynamics, AHandleBoxClampsItsVerticesOnEveryLevel) {
   gap.handles[0].region = VertexBox{Vec3(-0.14, -1.0, -1.0), Vec3(-0.13, 1.0, 1.0)};
   gap.handles[0].vertices = gap.handles[0].region->select(scene.bodies[0].mesh.vertices);
   ASSERT_FALSE(gap.handles[0].vertices.empty());
-  try {
-    VolumetricDynamics(gap, levels);
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.status(), Status::invalid_scene);
-    EXPECT_NE(std::string(e.what()).find("handles[0].box holds no vertex of tet level 0"),
-              std::string::npos)
-        << e.what();
-  }
+  expect_error([&] { VolumetricDynamics(gap, levels); }, Status::invalid_scene,
+               {"handles[0].box holds no vertex of tet level 0"});
 }

@@ -263,6 +263,7 @@ class DynamicLevelStats:
     steps: int  #: steps animated at this level
     newton_iterations: int  #: over its steps
     converged_steps: int  #: steps whose Newton solve met the tolerance
+    first_step: int  #: its frame 0 is the animation's frame first_step (a window)
     seconds: float  #: wall time of its steps, s
 
 
@@ -1346,6 +1347,27 @@ class Simulation(NativeObject):
                 discards the level (nothing changed).
         """
         self._run(lib.ps_sim_refine, progress=progress)
+
+    def refine_window(self, first_step: int, last_step: int, progress: ProgressArg = False) -> None:
+        """Progressive animation only: animates the next level over the previewed steps
+        ``first_step`` to ``last_step`` only, so that time windows of a long animation can be
+        refined apart (:mod:`progsim.windows` does so on Dask) and joined.
+
+        The level's frame 0 is the animation's frame ``first_step``
+        (:attr:`DynamicLevelStats.first_step`): for 0 as :meth:`refine`, else the coarser
+        frame refined by PSQ's safe refinement (PD §4.6's vertical warm start) with the
+        prolonged velocities. A level that is a window cannot be refined further.
+
+        Raises:
+            InvalidArgumentError: not ``0 <= first_step < last_step <=`` the previewed steps,
+                or not a progressive animation.
+            WrongCallOrderError: no preview step yet, or the current level is a window.
+            UnsupportedError: a window after frame 0 of a solid under contact.
+            OutOfRangeError, IntersectingError, CancelledError: as :meth:`refine`.
+        """
+        first = int32_value(first_step, "first_step")
+        last = int32_value(last_step, "last_step")
+        self._run(lib.ps_sim_refine_window, first, last, progress=progress, phase="refine")
 
     def settle(self, max_solves: int = 100, progress: ProgressArg = False) -> bool:
         """Solves again at the current time and loads until the level is at equilibrium (a

@@ -132,6 +132,9 @@ pub struct DynamicLevelStats {
     pub newton_iterations: usize,
     /// Steps whose Newton solve met the tolerance.
     pub converged_steps: usize,
+    /// The level's frame 0 is the animation's frame `first_step` (0 unless it is a window,
+    /// [`Simulation::refine_window`](crate::Simulation::refine_window)).
+    pub first_step: usize,
     /// Wall time of its steps, s.
     pub seconds: f64,
 }
@@ -144,6 +147,7 @@ impl From<sys::ps_dynamic_level_stats> for DynamicLevelStats {
             steps: count_from(raw.steps),
             newton_iterations: count_from(raw.newton_iterations),
             converged_steps: count_from(raw.converged_steps),
+            first_step: count_from(raw.first_step),
             seconds: raw.seconds,
         }
     }

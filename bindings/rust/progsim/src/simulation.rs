@@ -582,6 +582,33 @@ impl<'h> Simulation<'h> {
         self.check(status)
     }
 
+    /// Progressive animation only: animates the next level over the previewed steps
+    /// `first_step..=last_step` only, so that time windows of a long animation can be refined
+    /// apart (on several machines) and joined. The level's frame 0 is the animation's frame
+    /// `first_step` ([`DynamicLevelStats::first_step`](crate::DynamicLevelStats)): the coarser
+    /// frame refined by PSQ's safe refinement (PD §4.6's vertical warm start) unless it is 0.
+    ///
+    /// # Errors
+    /// As [`refine`](Self::refine); [`Status::InvalidArgument`] for a window outside the
+    /// previewed steps (or numbers that do not fit the C ABI) or a simulation that is not a
+    /// progressive animation; [`Status::WrongCallOrder`] above a level that is a window;
+    /// [`Status::Unsupported`] for a window after frame 0 of a solid under contact.
+    pub fn refine_window(&mut self, first_step: u32, last_step: u32) -> Result<()> {
+        let raw = self.handle()?;
+        let (first, last) = match (i32::try_from(first_step), i32::try_from(last_step)) {
+            (Ok(first), Ok(last)) => (first, last),
+            _ => {
+                return Err(Error::new(
+                    Status::InvalidArgument,
+                    "the window does not fit the C ABI",
+                ))
+            }
+        };
+        // SAFETY: live simulation.
+        let status = unsafe { sys::ps_sim_refine_window(raw, first, last) };
+        self.check(status)
+    }
+
     /// Solves again at the current time and loads until the level is at equilibrium or
     /// `max_solves` solves were made; returns whether equilibrium was reached.
     ///

@@ -175,3 +175,28 @@ fn misuse_is_refused_clearly() {
     assert!(error.message.contains("PSQ"), "{}", error.message);
     assert_eq!(psq.restart().unwrap_err().code, Status::InvalidArgument);
 }
+
+#[test]
+fn a_window_continues_the_free_fall_from_its_first_frame() {
+    let hierarchy = grid_levels();
+    let mut sim = falling(&hierarchy);
+    sim.step_preview(STEPS as u32).unwrap();
+    let error = sim.refine_window(3, 2).unwrap_err();
+    assert_eq!(error.code, Status::InvalidArgument);
+    assert!(error.message.contains("window of steps 3 to 2"), "{}", error.message);
+    sim.refine_window(2, STEPS as u32).unwrap();
+    let stats = sim.dynamic_level_stats(1).unwrap();
+    assert_eq!((stats.first_step, stats.steps), (2, STEPS - 2));
+    let rest = hierarchy.rest_positions(1).unwrap();
+    for frame in sim.frames(1).unwrap() {
+        let frame = frame.unwrap();
+        let n = frame.index + 2; // the animation's frame
+        for ((x, v), x0) in frame.positions.iter().zip(&frame.velocities).zip(&rest) {
+            assert!((x[2] - x0[2] - fallen(n)).abs() < 1e-9, "frame {n}");
+            assert!((v[2] + G * H * n as f64).abs() < 1e-7, "frame {n}");
+        }
+    }
+    let error = sim.refine().unwrap_err();
+    assert_eq!(error.code, Status::WrongCallOrder);
+    assert!(error.message.contains("window"), "{}", error.message);
+}
