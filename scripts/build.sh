@@ -4,5 +4,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 name=${1:-release}
 shift || true
+source scripts/ccache_env.sh
 cmake -S . -B "build/$name" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
 cmake --build "build/$name" -j "$(nproc)"

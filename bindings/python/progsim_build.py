@@ -1,22 +1,20 @@
-"""cffi build script of the ``progsim._progsim_cffi`` extension (out-of-line, API mode).
+"""Generates the C source of the ``progsim._progsim_cffi`` extension (cffi, out-of-line, API mode).
+
+CMake (``bindings/python/CMakeLists.txt``, driven by scikit-build-core when pip builds the
+package) runs ``python progsim_build.py --emit-c OUT.c`` and compiles ``OUT.c`` against the
+``progsim`` library target it builds in the same tree, so the wheel carries both.
 
 The C declarations are not copied by hand: :func:`cdef_from_header` derives them from
-``progsim.h`` at build time, so the header and the bindings cannot drift apart. Only the
-Python-side progress trampoline (an ``extern "Python"`` function) is declared here.
+``progsim.h``, so the header and the bindings cannot drift apart. Only the Python-side
+progress trampoline (an ``extern "Python"`` function) is declared here.
 
-Where things are found (both overridable through the environment):
-
-* ``PROGSIM_INCLUDE_DIR``: the folder holding ``progsim.h``
-  (default ``<repo>/capi/include``);
-* ``PROGSIM_LIB_DIR``: the folder holding ``libprogsim.so`` (default
-  ``<repo>/build/release/core``, as made by ``scripts/build.sh release``). The extension
-  gets that folder as its run-time search path (rpath), so ``import progsim`` needs no
-  ``LD_LIBRARY_PATH``.
+Usage: ``python progsim_build.py --emit-c OUT.c [--header progsim.h]`` or
+``python progsim_build.py --print-cdef [--header progsim.h]``.
 """
 
 from __future__ import annotations
 
-import os
+import argparse
 import re
 import sys
 from pathlib import Path
@@ -24,11 +22,7 @@ from pathlib import Path
 from cffi import FFI
 
 HERE = Path(__file__).resolve().parent
-REPO = HERE.parent.parent
-
-INCLUDE_DIR = Path(os.environ.get("PROGSIM_INCLUDE_DIR") or REPO / "capi" / "include").resolve()
-LIB_DIR = Path(os.environ.get("PROGSIM_LIB_DIR") or REPO / "build" / "release" / "core").resolve()
-HEADER = INCLUDE_DIR / "progsim.h"
+DEFAULT_HEADER = HERE.parent.parent / "capi" / "include" / "progsim.h"
 
 #: Declarations that exist for Python only: the C-callable trampoline of ps_progress_fn.
 PYTHON_CDEF = """
@@ -83,36 +77,37 @@ def cdef_from_header(text: str, export_macro: str = "PS_API") -> str:
     return re.sub(r"\n\s*\n+", "\n", cdef).strip() + "\n"
 
 
-def make_ffibuilder() -> FFI:
-    """An FFI builder for ``progsim._progsim_cffi`` compiled against :data:`HEADER`."""
-    if not HEADER.is_file():
-        sys.exit(
-            f"progsim_build.py: {HEADER} not found; set PROGSIM_INCLUDE_DIR to the folder "
-            "holding progsim.h"
-        )
-    library_files = list(LIB_DIR.glob("libprogsim.so*")) + list(LIB_DIR.glob("libprogsim.dylib"))
-    if not library_files:
-        sys.exit(
-            f"progsim_build.py: no libprogsim in {LIB_DIR}; build it first "
-            "(scripts/build.sh release) or set PROGSIM_LIB_DIR"
-        )
+def make_ffibuilder(header: Path) -> FFI:
+    """An FFI builder for ``progsim._progsim_cffi`` whose declarations come from ``header``."""
+    if not header.is_file():
+        sys.exit(f"progsim_build.py: {header} not found")
     builder = FFI()
-    builder.cdef(cdef_from_header(HEADER.read_text(encoding="utf-8")) + PYTHON_CDEF)
-    builder.set_source(
-        "progsim._progsim_cffi",
-        '#include "progsim.h"\n',
-        include_dirs=[str(INCLUDE_DIR)],
-        library_dirs=[str(LIB_DIR)],
-        runtime_library_dirs=[str(LIB_DIR)],
-        libraries=["progsim"],
-    )
+    builder.cdef(cdef_from_header(header.read_text(encoding="utf-8")) + PYTHON_CDEF)
+    builder.set_source("progsim._progsim_cffi", '#include "progsim.h"\n')
     return builder
 
 
-ffibuilder = make_ffibuilder()
+def main(argv: list[str]) -> int:
+    """Command line: ``--emit-c OUT.c`` or ``--print-cdef``, each with optional ``--header``."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    action = parser.add_mutually_exclusive_group(required=True)
+    action.add_argument(
+        "--emit-c", metavar="OUT.c", type=Path, help="write the extension's C source"
+    )
+    action.add_argument(
+        "--print-cdef", action="store_true", help="print the declarations"
+    )
+    parser.add_argument(
+        "--header", type=Path, default=DEFAULT_HEADER, help="progsim.h to read"
+    )
+    args = parser.parse_args(argv)
+    if args.print_cdef:
+        print(cdef_from_header(args.header.read_text(encoding="utf-8")))
+        return 0
+    args.emit_c.parent.mkdir(parents=True, exist_ok=True)
+    make_ffibuilder(args.header).emit_c_code(str(args.emit_c))
+    return 0
+
 
 if __name__ == "__main__":
-    if "--print-cdef" in sys.argv:
-        print(cdef_from_header(HEADER.read_text(encoding="utf-8")))
-    else:
-        ffibuilder.compile(verbose=True)
+    sys.exit(main(sys.argv[1:]))

@@ -1,11 +1,14 @@
-//! Generates the raw bindings from `progsim.h` and links the prebuilt `libprogsim`.
+//! Generates the raw bindings from `progsim.h` and links `libprogsim`, found in this order
+//! (as zstd-sys and libgit2-sys find theirs):
 //!
-//! Nothing is downloaded or built here: the header comes from the repository (or
-//! `PROGSIM_INCLUDE_DIR`) and the library from the CMake build (or `PROGSIM_LIB_DIR`).
-//!
-//! Environment:
-//! - `PROGSIM_INCLUDE_DIR`: folder holding `progsim.h` (default `<repo>/capi/include`).
-//! - `PROGSIM_LIB_DIR`: folder holding `libprogsim.so` (default `<repo>/build/release/core`).
+//! 1. `PROGSIM_LIB_DIR`: a folder holding a built `libprogsim.so` (e.g. `<repo>/build/release/core`
+//!    from `scripts/build.sh release`); the header from `PROGSIM_INCLUDE_DIR` (default
+//!    `<repo>/capi/include`).
+//! 2. An installed copy that pkg-config knows (`progsim.pc`, installed by `cmake --install`;
+//!    `PKG_CONFIG_PATH` for a non-standard prefix), header included.
+//! 3. Otherwise the library is built from this repository's sources with CMake (the `cmake`
+//!    crate; the Debian packages of `scripts/install_deps.sh` must be present), into `OUT_DIR`.
+//!    `PROGSIM_NO_SOURCE_BUILD=1` turns this off, so a missing library fails at once.
 //!
 //! Dependents see the two folders as `DEP_PROGSIM_INCLUDE` and `DEP_PROGSIM_LIB_DIR` in
 //! their own build scripts (the `links = "progsim"` metadata); the safe `progsim` crate uses
@@ -28,22 +31,66 @@ fn folder(var: &str, default: PathBuf) -> PathBuf {
     dir.canonicalize().unwrap_or(dir)
 }
 
-/// Where the shared library is, or a panic telling how to get one.
-fn check_library(lib_dir: &Path) {
-    let names = ["libprogsim.so", "libprogsim.dylib", "progsim.lib"];
-    if !names.iter().any(|name| lib_dir.join(name).exists()) {
+/// Where the header and the library come from.
+struct Library {
+    include_dir: PathBuf,
+    lib_dir: PathBuf,
+}
+
+/// Whether `lib_dir` holds a shared libprogsim.
+fn has_library(lib_dir: &Path) -> bool {
+    ["libprogsim.so", "libprogsim.dylib", "progsim.lib"]
+        .iter()
+        .any(|name| lib_dir.join(name).exists())
+}
+
+/// Source 1: `PROGSIM_LIB_DIR`, if set (it must then hold the library).
+fn prebuilt(root: &Path) -> Option<Library> {
+    println!("cargo::rerun-if-env-changed=PROGSIM_LIB_DIR");
+    env::var_os("PROGSIM_LIB_DIR")?;
+    let lib_dir = folder("PROGSIM_LIB_DIR", PathBuf::new());
+    if !has_library(&lib_dir) {
+        panic!("progsim-sys: PROGSIM_LIB_DIR={} holds no libprogsim", lib_dir.display());
+    }
+    Some(Library { include_dir: folder("PROGSIM_INCLUDE_DIR", root.join("capi/include")), lib_dir })
+}
+
+/// Source 2: an installed copy described by `progsim.pc`.
+fn installed() -> Option<Library> {
+    println!("cargo::rerun-if-env-changed=PKG_CONFIG_PATH");
+    let found = pkg_config::Config::new().cargo_metadata(false).probe("progsim").ok()?;
+    // Canonical: progsim.pc names its prefix relative to its own folder.
+    let lib_dir = found.link_paths.first()?.canonicalize().ok()?;
+    let include_dir = found.include_paths.first()?.canonicalize().ok()?;
+    has_library(&lib_dir).then_some(Library { include_dir, lib_dir })
+}
+
+/// Source 3: the repository's CMake build of the library alone (no CLI, tests or benchmarks).
+fn built_from_source(root: &Path) -> Library {
+    println!("cargo::rerun-if-env-changed=PROGSIM_NO_SOURCE_BUILD");
+    if env::var_os("PROGSIM_NO_SOURCE_BUILD").is_some_and(|v| v != "0") {
         panic!(
-            "progsim-sys: no libprogsim in {}. Build it first (scripts/build.sh release) or set \
-             PROGSIM_LIB_DIR to the folder holding libprogsim.so.",
-            lib_dir.display()
+            "progsim-sys: no libprogsim: set PROGSIM_LIB_DIR to the folder holding libprogsim.so, \
+             install progsim where pkg-config finds it, or unset PROGSIM_NO_SOURCE_BUILD to \
+             build it from source"
         );
     }
+    let out = cmake::Config::new(root)
+        .define("PROGSIM_BUILD_TESTS", "OFF")
+        .define("PROGSIM_BUILD_BENCH", "OFF")
+        .profile("Release")
+        .build_target("progsim")
+        .build();
+    for area in ["core", "capi"] {
+        println!("cargo::rerun-if-changed={}", root.join(area).display());
+    }
+    Library { include_dir: root.join("capi/include"), lib_dir: out.join("build/core") }
 }
 
 fn main() {
     let root = repo_root();
-    let include_dir = folder("PROGSIM_INCLUDE_DIR", root.join("capi/include"));
-    let lib_dir = folder("PROGSIM_LIB_DIR", root.join("build/release/core"));
+    let Library { include_dir, lib_dir } =
+        prebuilt(&root).or_else(installed).unwrap_or_else(|| built_from_source(&root));
     let header = include_dir.join("progsim.h");
     if !header.exists() {
         panic!(
@@ -52,7 +99,6 @@ fn main() {
             header.display()
         );
     }
-    check_library(&lib_dir);
 
     // Regenerate when the header changes. (A rebuilt library needs no rebuild here: it is
     // linked dynamically, and the tests compare its run-time version with the header.)
