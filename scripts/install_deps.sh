@@ -5,7 +5,7 @@
 set -euo pipefail
 
 APT_PACKAGES=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache
   libeigen3-dev libsuitesparse-dev libopenblas-openmp-dev libcgal-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libcairo2-dev fonts-dejavu-core
   clang-format clang-14 libclang-rt-14-dev libomp-14-dev libclang-dev
@@ -27,9 +27,13 @@ else
 fi
 
 PYTHON=${PYTHON:-python3}
-if ! "$PYTHON" -c "import cffi, numpy, tqdm, pytest, setuptools" 2>/dev/null; then
+# The package's build backend, the sweeps' engine (Dask) and contact sheets (matplotlib), and
+# the USD export's usd-core.
+PYTHON_PACKAGES=(cffi numpy tqdm pytest scikit-build-core "dask[distributed]" matplotlib usd-core)
+if ! "$PYTHON" -c "import cffi, numpy, tqdm, pytest, scikit_build_core, distributed, matplotlib, pxr" \
+  2>/dev/null; then
   echo "install_deps: installing Python packages"
-  "$PYTHON" -m pip install -q --disable-pip-version-check cffi numpy tqdm pytest setuptools
+  "$PYTHON" -m pip install -q --disable-pip-version-check "${PYTHON_PACKAGES[@]}"
 fi
 
 if ! command -v cargo >/dev/null 2>&1; then

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test: installs what is needed, builds, and runs the C++ and C tests (normal build),
-# an installed-copy find_package check, the Python (cffi) and Rust (bindgen) binding tests,
+# an installed-copy find_package check, the Python (cffi) binding tests, the CLI sweep, a
+# self-contained Python wheel, the Rust (bindgen) binding tests (also against pkg-config),
 # then the C++/C tests again under AddressSanitizer + UBSan (clang) and 30 000 libFuzzer inputs
 # over the scene parser and mesh loaders. CI runs exactly this, with CI=true: the main job
 # (scripts/run_default.sh) then runs first on the same clone.
@@ -56,6 +57,19 @@ build/consumer/progsim_consumer
 
 echo "== Python bindings (cffi) =="
 scripts/test_python.sh
+
+echo "== the CLI's sweep command, through the installed package =="
+sweep_out=$(mktemp -d)
+build/release/core/progsim sweep scenes/hanging_cloth.json --serial --steps 2 \
+  --param material.youngs_modulus=3e5,6e5 --out "$sweep_out"
+if [ "$(wc -l <"$sweep_out/runs.csv")" -ne 3 ] || [ ! -s "$sweep_out/contact_sheet.png" ]; then
+  echo "run_tests: progsim sweep did not write 2 runs and a contact sheet" >&2
+  exit 1
+fi
+rm -rf "$sweep_out"
+
+echo "== a self-contained wheel (installed elsewhere, build trees moved aside) =="
+scripts/test_wheel.sh
 
 echo "== Rust bindings (bindgen) =="
 scripts/test_rust.sh

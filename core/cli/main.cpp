@@ -1,11 +1,12 @@
-// progsim command-line interface: run scenes, build hierarchies, print build information and
-// parameters.
+// progsim command-line interface: run scenes, build hierarchies, measure accuracy, sweep
+// parameters (through the Python package), print build information and parameters.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "cli/accuracy_command.hpp"
 #include "cli/hierarchy_command.hpp"
 #include "cli/run_command.hpp"
+#include "cli/sweep_command.hpp"
 #include "common/build_info.hpp"
 #include "common/error.hpp"
 #include "scene/choice_table.hpp"
@@ -28,6 +29,7 @@ int main(int argc, char** argv) {
   CLI::App* hierarchy_cmd = cli::add_hierarchy_command(app, hierarchy_options);
   cli::AccuracyCommand accuracy_options;
   CLI::App* accuracy_cmd = cli::add_accuracy_command(app, accuracy_options);
+  CLI::App* sweep_cmd = cli::add_sweep_command(app);
   app.add_subcommand("info", "print version and build options")->callback([] {
     std::printf("%s", build_info().c_str());
   });
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
     if (run_cmd->parsed()) return cli::run_run_command(run_options);
     if (hierarchy_cmd->parsed()) return cli::run_hierarchy_command(hierarchy_options);
     if (accuracy_cmd->parsed()) return cli::run_accuracy_command(accuracy_options);
+    if (sweep_cmd->parsed()) return cli::run_sweep_command(*sweep_cmd);
     return 0;
   } catch (const Error& e) {
     std::fprintf(stderr, "progsim: error (%s): %s\n", status_name(e.status()), e.what());

@@ -42,3 +42,14 @@ def small():
     vertices, faces = grid()
     with progsim.Hierarchy(vertices, faces) as hierarchy:
         yield hierarchy
+
+
+@pytest.fixture(scope="session")
+def client():
+    """A Dask LocalCluster of two single-threaded worker processes (as progsim.sweep makes),
+    shared by the sweep and window tests."""
+    from progsim.sweep import local_client
+
+    with local_client(workers=2) as dask_client:
+        yield dask_client
+        dask_client.cluster.close()
