@@ -97,9 +97,6 @@ PS_API int32_t ps_sim_refine_window(ps_sim* sim, int32_t first_step, int32_t las
   return guarded(error_slot(sim), "ps_sim_refine_window", [&] {
     require_idle(sim);
     ProgressiveAnimation& animation = animation_driver(*sim);
-    if (last_step < 0)  // the core reads a negative end as "to the last frame"; the ABI does not
-      api_fail(PS_ERROR_INVALID_ARGUMENT,
-               "last_step is " + std::to_string(last_step) + "; it must be at least 1");
     const BusyGuard busy(*sim);
     animation.refine_window(StepWindow{first_step, last_step}, [&](int done, int total) {
       return !cancelled(*sim, done, total, "refine");

@@ -63,30 +63,27 @@ StepRecord AnimatedLevels::step_preview() {
   return step;
 }
 
-StepWindow AnimatedLevels::check_refinable(StepWindow window) const {
+void AnimatedLevels::check_refinable(const StepWindow& window) const {
   if (level() >= finest_)
     fail(Status::out_of_range,
          "level " + std::to_string(level()) + " is the finest level; there is nothing to refine");
-  const DynamicLevelRecord& coarse = records_[level()];
   const int steps = trajectories_[level()].num_frames() - 1;
-  if (coarse.first_step != 0 || coarse.steps.size() != records_[0].steps.size())
+  if (steps != trajectories_[0].num_frames() - 1)  // a window: fewer steps than the preview
     fail(Status::wrong_call_order, "refine: level " + std::to_string(level()) +
                                        " animates a window of the preview's steps only; a finer "
                                        "level needs it over the whole span");
   if (steps < 1) fail(Status::wrong_call_order, "refine: preview at least one step first");
-  if (window.last < 0) window.last = steps;
   if (window.first < 0 || window.first >= window.last || window.last > steps)
     fail(Status::invalid_argument, "refine: the window of steps " + std::to_string(window.first) +
                                        " to " + std::to_string(window.last) +
                                        " is not within the previewed steps 0 to " +
                                        std::to_string(steps) + " (first < last)");
-  return window;
 }
 
 void AnimatedLevels::refine(const LevelFactory& make, const LevelTransfer& transfer,
                             const ProgressiveSettings& settings, double time_step,
                             StepWindow window, const RefineProgress& progress) {
-  window = check_refinable(window);
+  check_refinable(window);
   const int coarse = level();
   const CoarserLevel from{&trajectories_[coarse], &masses_[coarse], &records_[0], coarse};
   std::unique_ptr<LevelSimulation> sim = make({});

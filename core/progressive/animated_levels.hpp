@@ -41,8 +41,8 @@ class AnimatedLevels {
   void refine(const LevelFactory& make, const LevelTransfer& transfer,
               const ProgressiveSettings& settings, double time_step, StepWindow window,
               const RefineProgress& progress);
-  /// Throws the errors refine() throws before any work (`window` resolved against the steps).
-  StepWindow check_refinable(StepWindow window = {}) const;
+  /// Throws the errors refine() throws before any work.
+  void check_refinable(const StepWindow& window) const;
   /// Throws Error(wrong_call_order), naming `what`, once a finer level exists.
   void check_preview_open(const char* what) const;
 

@@ -27,12 +27,12 @@ struct LevelTransfer {
 };
 
 /// The steps of the coarser level's span a finer level animates: from frame `first` to frame
-/// `last` (first < last); last < 0 means the last previewed frame. A window that starts after
+/// `last` (0 <= first < last <= the previewed steps). A window that starts after
 /// frame 0 starts from the coarser frame `first` refined vertically (LevelTransfer::vertical,
 /// PD §4.6's vertical warm start), so windows can be animated apart (on several machines).
 struct StepWindow {
   int first = 0;
-  int last = -1;
+  int last = 0;
 };
 
 /// The coarser level an animation refines: its frames, its masses and the preview's record
@@ -44,7 +44,7 @@ struct CoarserLevel {
   int index = 0;  ///< the coarser level's number, for messages
 };
 
-/// Where a finer level's animation of `window` (resolved: 0 ≤ first < last) starts: empty for
+/// Where a finer level's animation of `window` (checked: 0 ≤ first < last) starts: empty for
 /// frame 0 (the level's initial state); else the coarser frame `first` refined vertically
 /// toward P(x_l^first) among the surroundings of `at_rest` (the finer level at its initial
 /// state), at the time of frame `first`. Throws Error(unsupported) under contact without a
@@ -52,7 +52,7 @@ struct CoarserLevel {
 LevelStart window_start(const LevelSimulation& at_rest, const CoarserLevel& coarse,
                         const LevelTransfer& transfer, const StepWindow& window);
 
-/// Animates `sim` (the finer level at the state of frame window.first, window resolved) over the
+/// Animates `sim` (the finer level at the state of frame window.first, window checked) over the
 /// window's steps of `coarse`: its
 /// velocities start as U v_l^first, each step's x̂ follows `prediction` and, with a consistency
 /// weight, the penalty pulls toward P(x_l^{t+1}). With the per_frame prediction each step starts

@@ -32,7 +32,9 @@ class ProgressiveAnimation {
   virtual StepRecord step_preview() = 0;
   /// Animates level level() + 1 over every previewed step (Error(out_of_range) at the finest,
   /// Error(wrong_call_order) before a preview step, Error(cancelled) when `progress` says stop).
-  void refine(const RefineProgress& progress = nullptr) { refine_window(StepWindow{}, progress); }
+  void refine(const RefineProgress& progress = nullptr) {
+    refine_window(StepWindow{0, num_frames(level()) - 1}, progress);
+  }
   /// Animates level level() + 1 over `window` of the previewed steps only, its frame 0 the
   /// coarser frame window.first refined vertically (PD §4.6): windows of the finest level can be
   /// animated apart and joined. Errors as refine(), and Error(invalid_argument) for a window

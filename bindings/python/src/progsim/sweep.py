@@ -43,13 +43,27 @@ import pickle
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Union
+from typing import (
+    Any,
+    Callable,
+    Dict,
+    Iterable,
+    List,
+    Mapping,
+    Optional,
+    Sequence,
+    TypeVar,
+    Union,
+)
 
 import numpy as np
+from tqdm.auto import tqdm
 
 from ._errors import InvalidArgumentError, ProgsimError
 from .scene_text import load_scene, override
 from .simulation import CHOICES, PARAMETERS, Simulation
+
+T = TypeVar("T")
 
 __all__ = [
     "Range",
@@ -117,9 +131,7 @@ def grid(parameters: ParameterSpace) -> List[Dict[str, Any]]:
     return [dict(zip(names, combination)) for combination in itertools.product(*axes)]
 
 
-def sampled(
-    parameters: ParameterSpace, samples: int, seed: int = 0
-) -> List[Dict[str, Any]]:
+def sampled(parameters: ParameterSpace, samples: int, seed: int = 0) -> List[Dict[str, Any]]:
     """``samples`` combinations drawn at random (numpy's PCG64 seeded by ``seed``): a Range
     uniformly between its ends, a list by picking one of its values."""
     if samples < 1:
@@ -169,12 +181,7 @@ def _check_name(name: str) -> None:
     if name.startswith("scene.") and len(name) > len("scene."):
         return
     parts = name.split(".")
-    if (
-        len(parts) == 3
-        and parts[0] == "handle"
-        and parts[1].isdigit()
-        and parts[2] == "keyframes"
-    ):
+    if len(parts) == 3 and parts[0] == "handle" and parts[1].isdigit() and parts[2] == "keyframes":
         return
     raise InvalidArgumentError(
         f"unknown sweep parameter {name!r}: use a progsim.PARAMETERS or progsim.CHOICES name, "
@@ -273,9 +280,7 @@ def _cell(value: Any) -> Any:
     """A CSV cell: numbers as they are, anything else as compact JSON."""
     if isinstance(value, (int, float, str)):
         return value
-    return json.dumps(
-        np.asarray(value).tolist() if isinstance(value, np.ndarray) else value
-    )
+    return json.dumps(np.asarray(value).tolist() if isinstance(value, np.ndarray) else value)
 
 
 class Sweep:
@@ -329,16 +334,12 @@ class Sweep:
         self.contact_sheet(directory / "contact_sheet.png")
         return directory
 
-    def refine(
-        self, index: int, levels: Optional[int] = None, progress: Any = False
-    ) -> Simulation:
+    def refine(self, index: int, levels: Optional[int] = None, progress: Any = False) -> Simulation:
         """Runs run ``index`` again here (the same preview, bit for bit with one OpenMP
         thread) and refines it level by level, ``levels`` times (default: to the finest).
         The caller owns the returned simulation (``with`` or ``close()``)."""
         if not 0 <= index < len(self.specs):
-            raise InvalidArgumentError(
-                f"no run {index}: the sweep has {len(self.specs)}"
-            )
+            raise InvalidArgumentError(f"no run {index}: the sweep has {len(self.specs)}")
         spec = self.specs[index]
         sim = open_run(spec)
         try:
@@ -397,21 +398,24 @@ def _run_on_dask(
     return results
 
 
-def _bar(total: int, progress: bool):
-    """A tqdm bar, or an object with the same two methods that draws nothing."""
-    if progress:
-        from tqdm.auto import tqdm
+def _bar(total: int, progress: bool) -> tqdm:
+    """A tqdm bar counting finished runs; drawn only when ``progress`` is true."""
+    return tqdm(total=total, desc="sweep", unit="run", disable=not progress)
 
-        return tqdm(total=total, desc="sweep", unit="run")
 
-    class _Silent:
-        def update(self, _count: int) -> None:
-            pass
+def run_on(client: Any, workers: Optional[int], work: Callable[[Any], T]) -> T:
+    """``work(dask_client)`` on ``client``: a ``distributed.Client`` as given, a scheduler
+    address connected for the call, or None: a :func:`local_client` made and closed for it."""
+    if client is not None and not isinstance(client, str):
+        return work(client)
+    from distributed import Client
 
-        def close(self) -> None:
-            pass
-
-    return _Silent()
+    with local_client(workers) if client is None else Client(client) as own:
+        try:
+            return work(own)
+        finally:
+            if client is None:
+                own.cluster.close()
 
 
 def local_client(workers: Optional[int] = None):
@@ -464,9 +468,7 @@ def sweep(
         InvalidArgumentError: an unknown parameter name or an empty list of values.
         InvalidSceneError: the scene is not JSON.
     """
-    runs = (
-        sampled(parameters, samples, seed) if samples is not None else grid(parameters)
-    )
+    runs = sampled(parameters, samples, seed) if samples is not None else grid(parameters)
     specs = _specs(scene, runs, steps, base_dir)
     if client == "serial":
         bar = _bar(len(specs), progress)
@@ -476,13 +478,7 @@ def sweep(
             bar.update(1)
         bar.close()
         return Sweep(specs, results)
-    if client is None or isinstance(client, str):
-        from distributed import Client
-
-        with local_client(workers) if client is None else Client(client) as own:
-            try:
-                return Sweep(specs, _run_on_dask(specs, own, retries, progress))
-            finally:
-                if client is None:
-                    own.cluster.close()
-    return Sweep(specs, _run_on_dask(specs, client, retries, progress))
+    return Sweep(
+        specs,
+        run_on(client, workers, lambda dask: _run_on_dask(specs, dask, retries, progress)),
+    )

@@ -33,7 +33,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from ._errors import InvalidArgumentError
-from .sweep import RunSpec, _specs, local_client, open_run, preview_steps
+from .sweep import RunSpec, _specs, open_run, preview_steps, run_on
 
 __all__ = [
     "WindowResult",
@@ -53,9 +53,7 @@ class WindowResult:
     positions: np.ndarray  #: (last − first + 1, n, 3), m
     velocities: np.ndarray  #: (last − first + 1, n, 3), m/s
     seconds: float  #: wall time of the window's refinement alone, s
-    total_seconds: (
-        float  #: wall time of the whole task (preview and coarser levels too), s
-    )
+    total_seconds: float  #: wall time of the whole task (preview and coarser levels too), s
 
 
 def window_bounds(steps: int, windows: int) -> List[Tuple[int, int]]:
@@ -83,9 +81,7 @@ def refine_window_task(spec: RunSpec, first: int, last: int) -> WindowResult:
         frames = list(sim.frames(finest))
     positions = np.stack([frame.positions for frame in frames])
     velocities = np.stack([frame.velocities for frame in frames])
-    return WindowResult(
-        first, last, positions, velocities, seconds, time.perf_counter() - start
-    )
+    return WindowResult(first, last, positions, velocities, seconds, time.perf_counter() - start)
 
 
 def _rms(difference: np.ndarray) -> float:
@@ -106,13 +102,9 @@ def second_differences(positions: np.ndarray) -> np.ndarray:
 class WindowedRefinement:
     """The joined finest level of :func:`refine_in_windows` and its seams."""
 
-    def __init__(
-        self, windows: List[WindowResult], serial: Optional[np.ndarray] = None
-    ):
+    def __init__(self, windows: List[WindowResult], serial: Optional[np.ndarray] = None):
         self.windows = sorted(windows, key=lambda w: w.first)
-        parts = [self.windows[0].positions] + [
-            w.positions[1:] for w in self.windows[1:]
-        ]
+        parts = [self.windows[0].positions] + [w.positions[1:] for w in self.windows[1:]]
         #: (steps + 1, n, 3): window k's frames after its first, joined
         self.positions = np.concatenate(parts)
         self.serial = serial
@@ -122,12 +114,8 @@ class WindowedRefinement:
         """One dict per seam (see the module's "Continuity")."""
         accel = second_differences(self.positions)
         seam_frames = [w.first for w in self.windows[1:]]
-        interior = (
-            np.delete(accel, [s - 1 for s in seam_frames]) if len(accel) else accel
-        )
-        serial_accel = (
-            second_differences(self.serial) if self.serial is not None else None
-        )
+        interior = np.delete(accel, [s - 1 for s in seam_frames]) if len(accel) else accel
+        serial_accel = second_differences(self.serial) if self.serial is not None else None
         seams = []
         for before, after in zip(self.windows, self.windows[1:]):
             s = after.first
@@ -135,18 +123,12 @@ class WindowedRefinement:
                 "frame": s,
                 "jump": _rms(after.positions[0] - before.positions[-1]),
                 "second_difference": float(accel[s - 1]),
-                "interior_median": (
-                    float(np.median(interior)) if len(interior) else float("nan")
-                ),
-                "interior_max": (
-                    float(np.max(interior)) if len(interior) else float("nan")
-                ),
+                "interior_median": (float(np.median(interior)) if len(interior) else float("nan")),
+                "interior_max": (float(np.max(interior)) if len(interior) else float("nan")),
             }
             if serial_accel is not None:
                 seam["serial_second_difference"] = float(serial_accel[s - 1])
-                seam["distance_to_serial"] = _rms(
-                    self.positions[s + 1] - self.serial[s + 1]
-                )
+                seam["distance_to_serial"] = _rms(self.positions[s + 1] - self.serial[s + 1])
             seams.append(seam)
         return seams
 
@@ -157,15 +139,6 @@ class WindowedRefinement:
             writer = csv.DictWriter(out, fieldnames=names)
             writer.writeheader()
             writer.writerows(self.seams)
-
-
-def _serial_positions(spec: RunSpec) -> np.ndarray:
-    """The finest level refined over every step in this process: (steps + 1, n, 3)."""
-    with open_run(spec) as sim:
-        sim.step_preview(preview_steps(sim, spec.steps))
-        for _ in range(sim.num_levels - 1):
-            sim.refine()
-        return np.stack([frame.positions for frame in sim.frames(sim.num_levels - 1)])
 
 
 def refine_in_windows(
@@ -205,24 +178,14 @@ def refine_in_windows(
     bounds = window_bounds(total, windows)
     if client == "serial":
         results = [refine_window_task(spec, first, last) for first, last in bounds]
-    elif client is None or isinstance(client, str):
-        from distributed import Client
-
-        with local_client(workers) if client is None else Client(client) as own:
-            try:
-                results = _gather(own, spec, bounds)
-            finally:
-                if client is None:
-                    own.cluster.close()
     else:
-        results = _gather(client, spec, bounds)
-    serial = _serial_positions(spec) if compare_serial else None
+        results = run_on(client, workers, lambda dask: _gather(dask, spec, bounds))
+    # A window of the whole span is the serial refinement, bit for bit.
+    serial = refine_window_task(spec, 0, total).positions if compare_serial else None
     return WindowedRefinement(results, serial)
 
 
-def _gather(
-    client: Any, spec: RunSpec, bounds: Sequence[Tuple[int, int]]
-) -> List[WindowResult]:
+def _gather(client: Any, spec: RunSpec, bounds: Sequence[Tuple[int, int]]) -> List[WindowResult]:
     """One task per window, gathered."""
     futures = [
         client.submit(refine_window_task, spec, first, last, pure=False, retries=2)
