@@ -2,6 +2,7 @@
 // differences of its value, its value at rest against the finest level's own, and its Hessian
 // against the level's own shell Hessian (the preconditioner of PSQ Algorithm 1).
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "common/error.hpp"
 #include "energy/gravity.hpp"
@@ -175,6 +176,24 @@ TEST(ProlongedElastics, GalerkinHessianIsTheFinestHessianProjectedByU) {
   EXPECT_LT(relative_error(assembled_hessian(proxy, x, true),
                            lift.transpose() * rolled_hessian * lift, 1e-6),
             1e-10);
+}
+
+TEST(ProlongedElastics, GalerkinHessianIsTheSameOnOneAndTwoThreads) {
+  // Each coarse column is summed by one thread in a fixed order, so the team's size cannot
+  // change a bit of the matrix (a run must not depend on the cores it was given).
+  const DomeChain dome_chain;
+  const auto& chain = dome_chain.chain;
+  ProlongedElastics proxy(chain, shell_terms(dome_chain.mesh, true), dome_chain.mesh.vertices);
+  proxy.pin_finest_dofs({15, 16, 17}, dome_chain.mesh.vertices.row(5).transpose());
+  const Vector x = perturbed(dome_chain.hierarchy.levels[0].rest.vertices, 0.02, 3);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Eigen::MatrixXd one = assembled_hessian(proxy, x, true);
+  omp_set_num_threads(2);
+  const Eigen::MatrixXd two = assembled_hessian(proxy, x, true);
+  omp_set_num_threads(threads);
+  EXPECT_GT(one.norm(), 0.0);
+  EXPECT_EQ(one, two);
 }
 
 TEST(ProlongedElastics, GalerkinHessianIsReassembledOnlyBeyondTheRefreshDistance) {
