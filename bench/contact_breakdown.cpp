@@ -4,54 +4,19 @@
 // disabled while the cloth is still falling (before it touches). Prints tables, writes CSV.
 //
 // usage: bench_contact_breakdown [csv_path] [grid_n] [steps]
-#include <Eigen/Geometry>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <string>
 
 #include "bench_main.hpp"
-#include "common/constants.hpp"
+#include "cloth_over_sphere.hpp"
 #include "contact/contact_potential.hpp"
-#include "mesh/mesh_generators.hpp"
 #include "sim/level_simulation.hpp"
 
 using namespace progsim;
 
 namespace {
-
-Scene cloth_over_sphere(int n, int steps, bool contact) {
-  Scene scene;
-  scene.name = "bench_contact";
-  scene.time_step = 0.01;
-  scene.duration = steps * scene.time_step;
-  for (Effect e : {Effect::membrane, Effect::bending, Effect::gravity}) scene.effects.enable(e);
-  if (contact) {
-    scene.effects.enable(Effect::contact);
-    scene.effects.enable(Effect::friction);
-  }
-  TriangleMesh cloth = make_grid(1.0, 1.0, n, n);
-  const Eigen::AngleAxisd flat(-0.5 * kPi, Vec3::UnitX());
-  for (Eigen::Index i = 0; i < cloth.vertices.rows(); ++i)
-    cloth.vertices.row(i) =
-        (flat * cloth.vertices.row(i).transpose() + Vec3(-0.5, 0.3, 0.5)).transpose();
-  ShellMaterial m;
-  m.youngs_modulus = 1e5;
-  m.thickness = 5e-4;
-  m.density = 400;
-  m.friction = 0.3;
-  scene.bodies.push_back({"cloth", cloth, m, 0.0, 0.0});
-  scene.solver.tolerance = 1e-4;
-  scene.contact.dhat = 1e-3;
-  if (contact) {
-    Obstacle sphere;
-    sphere.name = "sphere";
-    sphere.mesh = make_sphere(0.25, 4);
-    sphere.friction = 0.3;
-    scene.obstacles.push_back(sphere);
-  }
-  return scene;
-}
 
 /// Seconds of one step by phase.
 struct Split {
@@ -94,7 +59,7 @@ int run(int argc, char** argv) {
   const int n = argc > 2 ? std::atoi(argv[2]) : 100;
   const int steps = argc > 3 ? std::atoi(argv[3]) : 50;
 
-  LevelSimulation with_contact(cloth_over_sphere(n, steps, true));
+  LevelSimulation with_contact(bench::cloth_over_sphere(n, steps, true));
   std::printf("cloth %d vertices + sphere %d vertices, %d steps of h = 0.01 s\n",
               with_contact.model().rest.num_vertices(),
               with_contact.contact()->mesh().num_obstacle_vertices, steps);
@@ -112,7 +77,7 @@ int run(int argc, char** argv) {
 
   // The same scene without contact, for the steps before the cloth touches (then the two
   // runs are identical motions, so the time difference is what contact checking costs).
-  LevelSimulation without_contact(cloth_over_sphere(n, steps, false));
+  LevelSimulation without_contact(bench::cloth_over_sphere(n, steps, false));
   Split free_fall, falling_with_contact, touching, all;
   for (int s = 0; s < first_touch; ++s) {
     free_fall.add(split_of(without_contact.step()));

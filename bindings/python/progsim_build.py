@@ -94,12 +94,8 @@ def main(argv: list[str]) -> int:
     action.add_argument(
         "--emit-c", metavar="OUT.c", type=Path, help="write the extension's C source"
     )
-    action.add_argument(
-        "--print-cdef", action="store_true", help="print the declarations"
-    )
-    parser.add_argument(
-        "--header", type=Path, default=DEFAULT_HEADER, help="progsim.h to read"
-    )
+    action.add_argument("--print-cdef", action="store_true", help="print the declarations")
+    parser.add_argument("--header", type=Path, default=DEFAULT_HEADER, help="progsim.h to read")
     args = parser.parse_args(argv)
     if args.print_cdef:
         print(cdef_from_header(args.header.read_text(encoding="utf-8")))

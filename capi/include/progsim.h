@@ -49,7 +49,7 @@ extern "C" {
 /* ---------------------------------------------------------------- version -------------- */
 
 #define PS_VERSION_MAJOR 0
-#define PS_VERSION_MINOR 18
+#define PS_VERSION_MINOR 19
 #define PS_VERSION_PATCH 0
 /** The header's version packed as major·10000 + minor·100 + patch. */
 #define PS_VERSION_HEADER (PS_VERSION_MAJOR * 10000 + PS_VERSION_MINOR * 100 + PS_VERSION_PATCH)
@@ -104,6 +104,25 @@ PS_API const char* ps_status_name(int32_t status);
  * until the next progsim call on this thread.
  */
 PS_API const char* ps_last_error(void);
+
+/* ---------------------------------------------------------------- threads -------------- */
+
+/**
+ * Threads of progsim's parallel loops, for the whole process. `threads` from 1 to 1024 fixes
+ * the count; 0 (the default) lets the library choose: the processors this process may run on
+ * that other processes leave idle, sampled from /proc/stat every 0.25 s while it computes, so
+ * that a loaded machine does not slow it down without OMP_WAIT_POLICY=passive (idle OpenMP
+ * threads otherwise spin on the core the work needs). OMP_NUM_THREADS, if set, caps the
+ * automatic count. Any other value: PS_ERROR_INVALID_ARGUMENT (message in ps_last_error()),
+ * the setting unchanged. Takes effect at the next parallel loop. Thread-safe.
+ */
+PS_API int32_t ps_set_threads(int32_t threads);
+
+/**
+ * The setting of ps_set_threads() (0: automatic) into *setting, and the threads a large
+ * parallel loop gets now into *current. Either pointer may be NULL. Thread-safe.
+ */
+PS_API int32_t ps_get_threads(int32_t* setting, int32_t* current);
 
 /**
  * Progress of long calls: called after each unit of work with done/total units and the

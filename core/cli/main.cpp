@@ -9,6 +9,7 @@
 #include "cli/sweep_command.hpp"
 #include "common/build_info.hpp"
 #include "common/error.hpp"
+#include "common/thread_budget.hpp"
 #include "scene/choice_table.hpp"
 #include "scene/parameter_table.hpp"
 
@@ -23,6 +24,11 @@ int main(int argc, char** argv) {
       "not converge (the finest level, or a direct run's last step); 130 the run was cancelled "
       "(Ctrl-C / SIGINT, at the next load step, settle or refinement): summary.json says which "
       "and why.");
+  app.add_option_function<int>(
+         "--threads", [](int threads) { set_thread_budget(threads); },
+         "threads of the parallel loops: 0 (default) chooses from the cores other processes "
+         "leave idle; 1 to 1024 fixes the count")
+      ->check(CLI::Range(0, 1024));
   cli::RunCommand run_options;
   CLI::App* run_cmd = cli::add_run_command(app, run_options);
   cli::HierarchyCommand hierarchy_options;

@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <sstream>
 
+#include "common/thread_budget.hpp"
+
 namespace progsim {
 
 const char* version_string() {
@@ -26,6 +28,8 @@ std::string build_info() {
       << "sanitizers: address\n"
 #endif
       << "openmp threads: " << omp_get_max_threads() << "\n"
+      << "thread budget: " << (thread_budget_setting() == 0 ? "automatic" : "fixed") << ", now "
+      << thread_budget() << "\n"
       << "eigen: " << EIGEN_WORLD_VERSION << "." << EIGEN_MAJOR_VERSION << "."
       << EIGEN_MINOR_VERSION << "\n"
       << "cholmod: " << CHOLMOD_MAIN_VERSION << "." << CHOLMOD_SUB_VERSION << "."

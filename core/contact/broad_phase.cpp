@@ -41,7 +41,7 @@ template <int K, class IndexOf>
 std::vector<Box> boxes(int count, IndexOf index_of, const Positions& p0, const Positions& p1,
                        double r) {
   std::vector<Box> out(count);
-#pragma omp parallel for schedule(static) if (count >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(count))
   for (int i = 0; i < count; ++i) out[i] = swept_box<K>(index_of(i), p0, p1, r);
   return out;
 }
@@ -64,7 +64,7 @@ class BoxGrid {
     lo_.resize(n);
     std::vector<Cell> hi(n);
     std::vector<long> count(n + 1, 0);
-#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n))
     for (int b = 0; b < n; ++b) {
       lo_[b] = cell_of(boxes[b].lo);
       hi[b] = cell_of(boxes[b].hi);
@@ -225,7 +225,7 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& querie
   const BoxGrid grid(listed, cell);
   std::vector<std::array<int, 2>> pairs;
   const int n = static_cast<int>(query_ids.size());
-#pragma omp parallel if (n >= kMinParallelItems)
+#pragma omp parallel num_threads(loop_threads(n))
   {
     std::vector<std::array<int, 2>> local;
 #pragma omp for schedule(dynamic, 256) nowait

@@ -120,19 +120,16 @@ double ContactPotential::value(const Vector& x) const {
   ScopedTimer timer(stats_.assembly_seconds);
   gather_positions(x, positions_);
   const int n = num_items();
-  double total = 0.0;
-#pragma omp parallel for reduction(+ : total) schedule(static) if (n >= kMinParallelItems)
-  for (int k = 0; k < n; ++k) {
-    const Pair p = pair(k);
-    total += pair_energy(p, stencil_positions(p.vertices, positions_), nullptr, nullptr);
-  }
-  return total;
+  return ordered_sum(n, [&](long k) {
+    const Pair p = pair(static_cast<int>(k));
+    return pair_energy(p, stencil_positions(p.vertices, positions_), nullptr, nullptr);
+  });
 }
 
 void ContactPotential::measure_distances(const Positions& positions) const {
   const int n = num_items();
   distances_squared_.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (int k = 0; k < n; ++k) {
     const Pair p = pair(k);
     distances_squared_[k] =
@@ -158,7 +155,7 @@ void ContactPotential::add_gradient(const Vector& x, Vector& g) const {
   const int n = static_cast<int>(items.size());
   std::vector<Vec12>& grads = gradients_;  // reused: no allocation once grown
   grads.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (int i = 0; i < n; ++i) {
     const Pair p = pair(items[i]);
     pair_energy(p, stencil_positions(p.vertices, positions_), &grads[i], nullptr);
@@ -209,7 +206,7 @@ void ContactPotential::append_hessian_triplets(const Vector& x, bool project,
   stats_.active_pairs += n;
   std::vector<LocalHessian>& hessians = hessians_;  // reused: no allocation once grown
   hessians.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kMinParallelItems / 16)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n, kMinParallelItems / 16))
   for (int i = 0; i < n; ++i) {
     const Pair p = pair(items[i]);
     Vec12 grad;
@@ -255,7 +252,7 @@ double ContactPotential::ccd(const Positions& p0, const Positions& p1) {
   double alpha = 1.0;
   int non_finite = 0;  // std::min would drop a NaN bound and admit the whole step
 #pragma omp parallel for reduction(min : alpha) reduction(+ : non_finite) schedule(dynamic, 64) \
-    if (n >= kMinParallelItems / 16)
+    num_threads(loop_threads(n, kMinParallelItems / 16))
   for (int k = 0; k < n; ++k) {
     const Pair p = pair(k);
     const Vec12 xs = stencil_positions(p.vertices, p0);

@@ -60,14 +60,11 @@ Vec2 FrictionPotential::slip(const Contact& c, const Vector& x) const {
 
 double FrictionPotential::value(const Vector& x) const {
   const int n = num_contacts();
-  double total = 0.0;
-#pragma omp parallel for reduction(+ : total) schedule(static) if (n >= kMinParallelItems)
-  for (int k = 0; k < n; ++k) {
+  return ordered_sum(n, [&](long k) {
     const Contact& c = contacts_[k];
-    total += c.point.friction * c.point.normal_force *
-             friction_smoothing(slip(c, x).norm(), epsilon_);  // IPC eq. 14
-  }
-  return total;
+    return c.point.friction * c.point.normal_force *
+           friction_smoothing(slip(c, x).norm(), epsilon_);  // IPC eq. 14
+  });
 }
 
 void FrictionPotential::add_gradient(const Vector& x, Vector& g) const {

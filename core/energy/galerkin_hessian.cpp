@@ -135,7 +135,7 @@ void GalerkinHessian::assemble(const Vector& fine_x, bool project_psd,
   const double* h = finest_.hessian(fine_x, project_psd).valuePtr();
   if (finest_.pattern_version() != finest_pattern_version_)
     fail(Status::internal, "Galerkin Hessian: the finest Hessian's pattern changed");
-  const int threads = omp_get_max_threads();
+  const int threads = loop_threads(static_cast<long>(full_rows_.size()));
   while (static_cast<int>(workspaces_.size()) < threads)
     workspaces_.push_back({std::vector<double>(lift_.rows()),
                            std::vector<int>(lift_.rows(), -1),
@@ -146,8 +146,7 @@ void GalerkinHessian::assemble(const Vector& fine_x, bool project_psd,
     w.touched.reserve(lift_.rows());
   }
   const int n_coarse = static_cast<int>(lift_.cols());
-  const bool parallel = static_cast<long>(full_rows_.size()) >= kMinParallelItems;
-#pragma omp parallel if (parallel)
+#pragma omp parallel num_threads(threads)
   {
     Workspace& w = workspaces_[omp_get_thread_num()];
 #pragma omp for schedule(dynamic, 8)

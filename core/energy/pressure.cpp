@@ -75,10 +75,8 @@ Pressure::Pressure(const Positions& rest, const Faces& faces, double pressure)
 }
 
 double Pressure::volume(const Vector& x) const {
-  double total = 0.0;
-#pragma omp parallel for reduction(+ : total) schedule(static) if (num_elements() >= kMinParallelItems)
-  for (int e = 0; e < num_elements(); ++e) total += element_volume(gather(e, x));
-  return total;
+  return ordered_sum(num_elements(),
+                     [&](long e) { return element_volume(gather(static_cast<int>(e), x)); });
 }
 
 double Pressure::element_volume(const LocalVector& xe) const {
@@ -117,7 +115,7 @@ void Pressure::element_hessian(int, const LocalVector& xe, LocalMatrix& h) const
 
 void Pressure::hessian_values(const Vector& x, bool project_psd, double* values) const {
   const double s = pressure_ / 6.0;
-#pragma omp parallel for schedule(static) if (num_elements() >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(num_elements()))
   for (int f = 0; f < num_elements(); ++f) {
     const LocalVector xe = gather(f, x);
     Eigen::Map<LocalMatrix> h(values + static_cast<std::size_t>(f) * kDofs * kDofs);

@@ -29,17 +29,17 @@ typename StencilTerm<K>::LocalVector StencilTerm<K>::gather(int e, const Vector&
 
 template <int K>
 double StencilTerm<K>::value(const Vector& x) const {
-  double total = 0.0;
-#pragma omp parallel for reduction(+ : total) schedule(static) if (num_elements() >= kMinParallelItems)
-  for (int e = 0; e < num_elements(); ++e) total += element_value(e, gather(e, x));
-  return total;
+  return ordered_sum(num_elements(), [&](long e) {
+    const int i = static_cast<int>(e);
+    return element_value(i, gather(i, x));
+  });
 }
 
 template <int K>
 void StencilTerm<K>::add_gradient(const Vector& x, Vector& g) const {
-#pragma omp parallel for schedule(static) if (num_elements() >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(num_elements()))
   for (int e = 0; e < num_elements(); ++e) element_gradient(e, gather(e, x), element_gradients_[e]);
-#pragma omp parallel for schedule(static) if (num_vertices_ >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(num_vertices_))
   for (int v = 0; v < num_vertices_; ++v) {
     for (int i = incidence_offsets_[v]; i < incidence_offsets_[v + 1]; ++i) {
       const int slot = incidence_slots_[i];
@@ -62,7 +62,7 @@ void StencilTerm<K>::hessian_pattern(int* rows, int* cols) const {
 
 template <int K>
 void StencilTerm<K>::hessian_values(const Vector& x, bool project_psd, double* values) const {
-#pragma omp parallel for schedule(static) if (num_elements() >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(num_elements()))
   for (int e = 0; e < num_elements(); ++e) {
     Eigen::Map<LocalMatrix> h(values + static_cast<std::size_t>(e) * kDofs * kDofs);
     LocalMatrix local;

@@ -72,7 +72,7 @@ StrainLimit::StrainLimit(const Positions& rest, const Faces& faces, std::vector<
 
 int StrainLimit::fit_limits(const Vector& x, FitAfter after) {
   int raised = 0;
-#pragma omp parallel for reduction(+ : raised) schedule(static) if (num_elements() >= kMinParallelItems)
+#pragma omp parallel for reduction(+ : raised) schedule(static) num_threads(loop_threads(num_elements()))
   for (int e = 0; e < num_elements(); ++e) {
     Element& el = elements_[e];
     const double sigma = StretchSpectrum(deformation_gradient(el.beta, gather(e, x))).sigma1;
@@ -117,9 +117,9 @@ void StrainLimit::check_size(const Vector& x, const char* what) const {
 double StrainLimit::max_stretch(const Vector& x) const {
   check_size(x, "max_stretch");
   double stretch = 0.0;
-#pragma omp parallel for reduction(max        \
-                                   : stretch) \
-    schedule(static) if (num_elements() >= kMinParallelItems)
+#pragma omp parallel for reduction(max                         \
+                                   : stretch) schedule(static) \
+    num_threads(loop_threads(num_elements()))
   for (int e = 0; e < num_elements(); ++e)
     stretch = std::max(
         stretch, StretchSpectrum(deformation_gradient(elements_[e].beta, gather(e, x))).sigma1);

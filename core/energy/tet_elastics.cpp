@@ -130,7 +130,7 @@ void TetElastics::element_projected_hessian(int e, const LocalVector& xe, LocalM
 double TetElastics::max_step(const Vector& x, const Vector& p) {
   double alpha = 1.0;
   bool finite = true;
-#pragma omp parallel for reduction(min : alpha) reduction(&& : finite) schedule(static) if (num_elements() >= kMinParallelItems)
+#pragma omp parallel for reduction(min : alpha) reduction(&& : finite) schedule(static) num_threads(loop_threads(num_elements()))
   for (int e = 0; e < num_elements(); ++e) {
     const double step = positive_volume_step(edge_matrix(gather(e, x)), edge_matrix(gather(e, p)));
     if (std::isnan(step))

@@ -32,7 +32,7 @@ void WindForce::lag(const Vector& start, const Vector& start_velocity, double ti
   start_ = start;
   time_step_ = time_step;
   wind_ = wind;
-#pragma omp parallel for schedule(static) if (num_elements() >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(num_elements()))
   for (int e = 0; e < num_elements(); ++e) {
     const LocalVector xe = gather(e, start);
     const Vec3 normal =

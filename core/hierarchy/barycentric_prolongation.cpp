@@ -16,7 +16,7 @@ void BarycentricProlongation::offsets(const Positions& coarse, Positions& out) c
 void BarycentricProlongation::apply(const Positions& coarse, Positions& fine) const {
   check_shapes(coarse, fine, "apply");
   const Eigen::Index n = fine.rows();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) fine.row(i) = intrinsic_point(coarse, i).transpose();
 }
 

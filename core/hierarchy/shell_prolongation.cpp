@@ -166,7 +166,7 @@ void ShellProlongation::add_jacobian_transpose(
   // M_f = Σ_{i on f} g_i c_iᵀ, c_i = (t₁, t₂, γ): one derivative of the frame per coarse face.
   const Eigen::Index faces = coarse_faces_.rows(), n = coarse.rows();
   workspace.resize(faces);
-#pragma omp parallel for schedule(static) if (faces >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(faces))
   for (Eigen::Index f = 0; f < faces; ++f) {
     Mat3 weight = Mat3::Zero();
     for (int k = face_fine_first_[f]; k < face_fine_first_[f + 1]; ++k)
@@ -178,7 +178,7 @@ void ShellProlongation::add_jacobian_transpose(
     const Eigen::Matrix<double, 6, 1> d = frame_gradient(d1, d2, face_rest_inverse_[f], weight);
     workspace[f] << -(d.head<3>() + d.tail<3>()), d.head<3>(), d.tail<3>();
   }
-#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (Eigen::Index v = 0; v < n; ++v) {
     Vec3 sum = Vec3::Zero();
     for (ProlongationMatrix::InnerIterator it(intrinsic_transpose_, v); it; ++it)
@@ -192,14 +192,14 @@ void ShellProlongation::add_jacobian_transpose(
 void ShellProlongation::offsets(const Positions& coarse, Positions& out) const {
   check_shapes(coarse, out, "offsets");
   const Eigen::Index n = out.rows();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) out.row(i) = offset(coarse, i).transpose();
 }
 
 void ShellProlongation::apply(const Positions& coarse, Positions& fine) const {
   check_shapes(coarse, fine, "apply");
   const Eigen::Index n = fine.rows();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (Eigen::Index i = 0; i < n; ++i)
     fine.row(i) = (intrinsic_point(coarse, i) + offset(coarse, i)).transpose();
 }

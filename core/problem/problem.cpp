@@ -149,7 +149,7 @@ const Problem::SparseMatrix& Problem::hessian(const Vector& x, bool project_psd)
   }
   double* values = hessian_.valuePtr();
   const int nnz = static_cast<int>(hessian_.nonZeros());
-#pragma omp parallel for schedule(static) if (nnz >= kMinParallelItems)
+#pragma omp parallel for schedule(static) num_threads(loop_threads(nnz))
   for (int i = 0; i < nnz; ++i) {
     double sum = 0.0;
     for (int j = nonzero_entry_offsets_[i]; j < nonzero_entry_offsets_[i + 1]; ++j)

@@ -277,7 +277,7 @@ class Expansion {
                const std::vector<char>& done, SafeRefinementStats& stats) {
     const int n = static_cast<int>(batch.size());
     int random = 0, failed = -1;
-#pragma omp parallel for reduction(+ : random) schedule(dynamic, 4)
+#pragma omp parallel for reduction(+ : random) schedule(dynamic, 4) num_threads(thread_budget())
     for (int b = 0; b < n; ++b) {
       if (done[b]) continue;
       const int found = perturb_one(batch[b], sizes[b]);
@@ -343,7 +343,7 @@ class Expansion {
                                   d > p.offset ? p.offset : 0.0, settings_.far_ratio, ground())));
       }
     std::vector<char> done(n, 0);
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp parallel for schedule(dynamic, 4) num_threads(thread_budget())
     for (int b = 0; b < n; ++b) {
       const CollapseRecord& record = h_.collapses[batch[b]];
       const int j = fine_index_[record.removed];
@@ -483,8 +483,9 @@ class Expansion {
                    std::vector<double>& step) const {
     const int n = static_cast<int>(pairs.size());
     double alpha = 1.0;
-#pragma omp parallel for reduction(min \
-                                   : alpha) schedule(dynamic, 64) if (n >= kMinParallelItems / 16)
+#pragma omp parallel for reduction(min                            \
+                                   : alpha) schedule(dynamic, 64) \
+    num_threads(loop_threads(n, kMinParallelItems / 16))
     for (int k = 0; k < n; ++k) {
       step[k] = 1.0;
       if (!touches(pairs[k], moving)) continue;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "common/thread_budget.hpp"
 #include "common/timer.hpp"
 #include "solve/truncated_newton.hpp"
 
@@ -226,6 +227,7 @@ NewtonReport NewtonSolver::minimize(Problem& problem, Vector& x, const NewtonSet
   const bool refine_projected = settings.projection == HessianProjection::adaptive &&
                                 settings.max_cg_iterations > 0 && problem.hessian_is_exact();
   for (report.iterations = 0; report.iterations < settings.max_iterations; ++report.iterations) {
+    refresh_thread_budget();  // the team size follows the machine's load (thread_budget.hpp)
     if (interrupted_ && interrupted_()) {
       report.stop = NewtonStop::interrupted;
       break;

@@ -35,6 +35,18 @@ static void test_version(void) {
   CHECK(strcmp(ps_status_name(PS_ERROR_INVALID_MESH), "PS_ERROR_INVALID_MESH") == 0);
 }
 
+static void test_threads(void) {
+  int32_t setting = -1, current = -1;
+  CHECK(ps_set_threads(2) == PS_OK);
+  CHECK(ps_get_threads(&setting, &current) == PS_OK && setting == 2 && current == 2);
+  CHECK_ERROR(ps_set_threads(-1), PS_ERROR_INVALID_ARGUMENT, ps_last_error(), "thread count -1");
+  CHECK_ERROR(ps_set_threads(1025), PS_ERROR_INVALID_ARGUMENT, ps_last_error(), "1 to 1024");
+  CHECK(ps_get_threads(&setting, NULL) == PS_OK && setting == 2); /* unchanged */
+  CHECK(ps_set_threads(0) == PS_OK);
+  CHECK(ps_get_threads(&setting, &current) == PS_OK && setting == 0 && current >= 1);
+  CHECK(ps_get_threads(NULL, NULL) == PS_OK);
+}
+
 static int32_t cancel_after_two(void* user_data, int32_t done, int32_t total, const char* phase) {
   int* calls = (int*)user_data;
   ++*calls;
@@ -364,8 +376,8 @@ static ps_sim* keyframed_sheet(const char* motion) {
  * scene's "keyframes", and bad keys refused naming the key with the motion unchanged. */
 static void test_handle_keyframes(void) {
   /* rows: time, tx, ty, tz, ax, ay, az, angle; a quarter turn about z through c = (0, 0.5, 0) */
-  const double rows[3 * 8] = {0.0, 0, 0, 0, 0, 0, 1, 0,   0.2, 0, 0, 0.1, 0, 0, 1, 0,
-                              0.4, 0, 0, 0.1, 0, 0, 1, 1.5707963267948966};
+  const double rows[3 * 8] = {0.0, 0, 0, 0, 0,   0, 1, 0,   0.2, 0, 0, 0.1,
+                              0,   0, 1, 0, 0.4, 0, 0, 0.1, 0,   0, 1, 1.5707963267948966};
   ps_sim* coded = keyframed_sheet("{\"center\": [0, 0.5, 0]}");
   ps_sim* read = keyframed_sheet(
       "{\"center\": [0, 0.5, 0], \"interpolation\": \"smooth\", \"keyframes\": ["
@@ -380,7 +392,7 @@ static void test_handle_keyframes(void) {
     CHECK(ps_sim_get_positions(coded, 0, a, 75, &count) == PS_OK && count == 75);
     CHECK(ps_sim_get_positions(read, 0, b, 75, &count) == PS_OK);
     CHECK(memcmp(a, b, sizeof a) == 0); /* the scene's keyframes, bit for bit */
-    if (step == 2) /* key 1: vertex 20 (0, 1, 0) lifted by 0.1 */
+    if (step == 2)                      /* key 1: vertex 20 (0, 1, 0) lifted by 0.1 */
       CHECK(fabs(a[60]) < 1e-12 && fabs(a[61] - 1.0) < 1e-12 && fabs(a[62] - 0.1) < 1e-12);
     if (step >= 4) /* key 2 and after: turned a quarter about z through (0, 0.5, 0) */
       CHECK(fabs(a[60] + 0.5) < 1e-12 && fabs(a[61] - 0.5) < 1e-12 && fabs(a[62] - 0.1) < 1e-12);
@@ -831,6 +843,7 @@ int main(int argc, char** argv) {
   }
   snprintf(source_dir, sizeof source_dir, "%s", argv[1]);
   test_version();
+  test_threads();
   test_full_cycle();
   test_handle_reaction();
   test_misuse();

@@ -129,6 +129,16 @@ TEST_F(Cli, InfoAndParamsPrint) {
   EXPECT_NE(params.output.find("material.poisson_ratio"), std::string::npos);
 }
 
+TEST_F(Cli, ThreadsAreFixedByOptionAndNonsenseIsRefused) {
+  const CommandResult fixed = run_cli("--threads 1 info");
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.output;
+  EXPECT_NE(fixed.output.find("thread budget: fixed, now 1"), std::string::npos) << fixed.output;
+  EXPECT_NE(run_cli("info").output.find("thread budget: automatic"), std::string::npos);
+  const CommandResult negative = run_cli("--threads -2 info");
+  EXPECT_NE(negative.exit_code, 0);
+  EXPECT_NE(negative.output.find("--threads"), std::string::npos) << negative.output;
+}
+
 TEST_F(Cli, RejectsMalformedScenes) {
   expect_rejected(write("missing.json", R"({"effects": ["membrane"]})"),
                   "missing required field 'bodies'");

@@ -19,9 +19,7 @@ def sheet(motion: dict) -> progsim.Simulation:
         {
             "simulation": {"mode": "quasistatic", "time_step": 0.1},
             "effects": ["membrane", "bending"],
-            "bodies": [
-                {"mesh": {"generator": "grid", "width": 1, "height": 1, "nx": 4, "ny": 4}}
-            ],
+            "bodies": [{"mesh": {"generator": "grid", "width": 1, "height": 1, "nx": 4, "ny": 4}}],
             "handles": [{"body": 0, "vertices": LEFT_EDGE, "motion": motion}],
         }
     )

@@ -103,8 +103,7 @@ def test_ctrl_c_stops_a_long_preview():
 
     from conftest import MESH
 
-    script = textwrap.dedent(
-        f"""
+    script = textwrap.dedent(f"""
         import sys
         import progsim
         h = progsim.Hierarchy.from_file({str(MESH)!r})
@@ -118,8 +117,7 @@ def test_ctrl_c_stops_a_long_preview():
             sim.step_preview(10000, progress=report)
         except KeyboardInterrupt:
             print("interrupted after", sim.level_stats().steps, flush=True)
-        """
-    )
+        """)
     child = subprocess.Popen(
         [sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
     )

@@ -274,8 +274,9 @@ def test_a_crossing_input_is_refused_unless_the_scene_opts_in():
 def test_hierarchy_contact_offset_is_checked():
     """ps_hierarchy_def.contact_offset: a length >= 0 (the levels keep it; C++ tests measure)."""
     with pytest.raises(progsim.InvalidArgumentError, match="contact_offset"):
-        progsim.Hierarchy.from_file(CROSSING.with_suffix(".obj"), coarse_vertex_counts=[40],
-                                    contact_offset=-1e-3)
+        progsim.Hierarchy.from_file(
+            CROSSING.with_suffix(".obj"), coarse_vertex_counts=[40], contact_offset=-1e-3
+        )
     with progsim.Hierarchy.from_file(
         CROSSING.with_suffix(".obj"), coarse_vertex_counts=[40], contact_offset=2.5e-4
     ) as hierarchy:

@@ -19,9 +19,7 @@ def _scene(plate_file: str) -> dict:
         "simulation": {"time_step": 0.01},
         "gravity": [0, 0, -9.81],
         "effects": EFFECTS,
-        "bodies": [
-            {"mesh": {"generator": "grid", "width": 0.4, "height": 0.4, "nx": 4, "ny": 4}}
-        ],
+        "bodies": [{"mesh": {"generator": "grid", "width": 0.4, "height": 0.4, "nx": 4, "ny": 4}}],
         "handles": [
             {
                 "body": 0,
@@ -37,9 +35,7 @@ def _scene(plate_file: str) -> dict:
             {
                 "mesh": {"file": plate_file},
                 "friction": 0.2,
-                "motion": {
-                    "keyframes": [{"time": 0}, {"time": 0.1, "translation": [0, 0, 0.01]}]
-                },
+                "motion": {"keyframes": [{"time": 0}, {"time": 0.1, "translation": [0, 0, 0.01]}]},
             }
         ],
         "ground": {"normal": [0, 0, 2], "height": -0.1, "friction": 0.3},
@@ -53,7 +49,10 @@ def _bare_sheet(hierarchy: progsim.Hierarchy) -> progsim.Simulation:
 @pytest.fixture
 def plate_file(tmp_path):
     path = tmp_path / "plate.obj"
-    lines = [f"v {float(x)!r} {float(y)!r} {float(z)!r}" for x, y, z in PLATE] + ["f 1 2 3", "f 1 3 4"]
+    lines = [f"v {float(x)!r} {float(y)!r} {float(z)!r}" for x, y, z in PLATE] + [
+        "f 1 2 3",
+        "f 1 3 4",
+    ]
     path.write_text("\n".join(lines) + "\n")
     return path
 
@@ -68,9 +67,13 @@ def test_a_scene_built_in_code_steps_bit_for_bit_like_its_json(plate_file):
         assert sim.add_obstacle(PLATE, PLATE_FACES, friction=0.2) == 0
         sim.set_obstacle_keyframes(0, [0.0, 0.1], [[0, 0, 0], [0, 0, 0.01]])
         sim.set_ground(normal=(0, 0, 2), height=-0.1, friction=0.3)
-        assert (sim.num_handles, sim.num_obstacles) == (2, 1) == (
-            json_sim.num_handles,
-            json_sim.num_obstacles,
+        assert (
+            (sim.num_handles, sim.num_obstacles)
+            == (2, 1)
+            == (
+                json_sim.num_handles,
+                json_sim.num_obstacles,
+            )
         )
         with sim:
             for _ in range(15):
@@ -240,8 +243,13 @@ def test_wind_strain_limit_friction_and_contact_settings_from_code_equal_json():
         with code:
             code.add_handle([0, 4])
             code.set_ground(normal=(0, 0, 1), height=-0.05, friction=0.3)
-            for name in ("material.friction", "material.strain_limit", "contact.dhat",
-                         "contact.stiffness", "contact.friction_velocity"):
+            for name in (
+                "material.friction",
+                "material.strain_limit",
+                "contact.dhat",
+                "contact.stiffness",
+                "contact.friction_velocity",
+            ):
                 assert code.get_param(name) == json_sim.get_param(name), name
             for _ in range(15):
                 json_sim.step_preview(1)

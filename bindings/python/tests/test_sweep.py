@@ -85,9 +85,7 @@ def test_grid_and_samples():
     runs = grid({"a": [1, 2], "b": Range(0.0, 1.0, 3)})
     assert runs == [{"a": a, "b": b} for a in (1, 2) for b in (0.0, 0.5, 1.0)]
     drawn = sampled({"a": Range(2.0, 3.0, 1), "b": ["x", "y"]}, samples=50, seed=4)
-    assert len(drawn) == 50 and drawn == sampled(
-        {"a": Range(2.0, 3.0, 1), "b": ["x", "y"]}, 50, 4
-    )
+    assert len(drawn) == 50 and drawn == sampled({"a": Range(2.0, 3.0, 1), "b": ["x", "y"]}, 50, 4)
     assert all(2.0 <= run["a"] <= 3.0 and run["b"] in ("x", "y") for run in drawn)
     assert {run["b"] for run in drawn} == {"x", "y"}
     with pytest.raises(progsim.InvalidArgumentError, match="no values"):
@@ -95,9 +93,7 @@ def test_grid_and_samples():
 
 
 def test_unknown_parameter_is_refused_before_any_run():
-    with pytest.raises(
-        progsim.InvalidArgumentError, match="unknown sweep parameter 'stifness'"
-    ):
+    with pytest.raises(progsim.InvalidArgumentError, match="unknown sweep parameter 'stifness'"):
         sweep(SCENE_TEXT, {"stifness": [1.0]}, "serial", progress=False)
 
 
@@ -107,9 +103,7 @@ def test_scene_overrides_and_comments():
     changed = override(scene, "bodies.0.material.thickness", 1e-3)
     assert changed["bodies"][0]["material"]["thickness"] == 1e-3
     assert scene["bodies"][0]["material"]["thickness"] == 5e-4  # the original is kept
-    assert override(scene, "wind.velocity", [1, 0, 0])["wind"] == {
-        "velocity": [1, 0, 0]
-    }
+    assert override(scene, "wind.velocity", [1, 0, 0])["wind"] == {"velocity": [1, 0, 0]}
     with pytest.raises(progsim.InvalidSceneError, match="no entry bodies.3"):
         override(scene, "bodies.3.name", "x")
     with pytest.raises(progsim.InvalidSceneError, match="not JSON"):
@@ -191,15 +185,11 @@ def test_table_contact_sheet_and_refinement(tmp_path):
     assert float(written[1]["center_of_mass_y"]) == runs.rows()[1]["center_of_mass_y"]
     image = (directory / "contact_sheet.png").read_bytes()
     assert image[:8] == b"\x89PNG\r\n\x1a\n"
-    width, height = int.from_bytes(image[16:20], "big"), int.from_bytes(
-        image[20:24], "big"
-    )
+    width, height = int.from_bytes(image[16:20], "big"), int.from_bytes(image[20:24], "big")
     assert (width, height) == (600, 300)  # two 3-inch panels side by side at 100 dpi
 
     with runs.refine(1) as sim:
-        assert (
-            sim.num_frames(1) == 6
-        )  # frame 0 and five refined steps at the finest level
+        assert sim.num_frames(1) == 6  # frame 0 and five refined steps at the finest level
         np.testing.assert_array_equal(sim.positions(0), runs.results[1].positions)
         assert np.isfinite(sim.positions(1)).all()
     with pytest.raises(progsim.InvalidArgumentError, match="no run 2"):
@@ -228,12 +218,7 @@ def test_command_line(tmp_path, capsys):
     )
     assert status == 0, capsys.readouterr().err
     assert len((out / "runs.csv").read_text().splitlines()) == 3
-    assert (
-        cli_main(
-            ["sweep", str(scene), "--param", "nope=1", "--serial", "--out", str(out)]
-        )
-        == 2
-    )
+    assert cli_main(["sweep", str(scene), "--param", "nope=1", "--serial", "--out", str(out)]) == 2
     assert "unknown sweep parameter 'nope'" in capsys.readouterr().err
 
 
@@ -256,6 +241,4 @@ def test_calls_release_the_gil():
     sim.close()
     inside = [t for t in ticks if window["start"] < t < window["end"]]
     assert window["end"] - window["start"] > 0.01
-    assert (
-        len(inside) > 1000
-    ), f"{len(inside)} ticks of the main thread during the C call"
+    assert len(inside) > 1000, f"{len(inside)} ticks of the main thread during the C call"

@@ -33,13 +33,8 @@ def test_a_refined_animation_reopens_with_every_frame(tmp_path):
         stored = np.array(points.Get(frame.index))
         assert stored.shape == (81, 3)
         np.testing.assert_array_equal(stored, frame.positions.astype(np.float32))
-    assert (
-        np.array(mesh.GetFaceVertexIndicesAttr().Get()).reshape(-1, 3).tolist()
-        == faces.tolist()
-    )
-    assert not np.array_equal(
-        np.array(points.Get(0)), np.array(points.Get(5))
-    )  # it moved
+    assert np.array(mesh.GetFaceVertexIndicesAttr().Get()).reshape(-1, 3).tolist() == faces.tolist()
+    assert not np.array_equal(np.array(points.Get(0)), np.array(points.Get(5)))  # it moved
 
 
 def test_bad_up_axis(tmp_path):

@@ -33,29 +33,21 @@ def parse_param(text: str) -> Tuple[str, Any]:
         try:
             values = json.loads(spec)
         except json.JSONDecodeError as error:
-            raise argparse.ArgumentTypeError(
-                f"--param {name}: not a JSON list ({error})"
-            )
+            raise argparse.ArgumentTypeError(f"--param {name}: not a JSON list ({error})")
         if not isinstance(values, list):
-            raise argparse.ArgumentTypeError(
-                f"--param {name}: a JSON SPEC must be a list"
-            )
+            raise argparse.ArgumentTypeError(f"--param {name}: a JSON SPEC must be a list")
         return name, values
     parts = spec.split(":")
     if len(parts) == 3:
         try:
             return name, Range(float(parts[0]), float(parts[1]), int(parts[2]))
         except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"--param {name}: a:b:n needs numbers, n whole"
-            )
+            raise argparse.ArgumentTypeError(f"--param {name}: a:b:n needs numbers, n whole")
     return name, [_word_or_number(part) for part in spec.split(",")]
 
 
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="progsim", description="progsim's Python tools"
-    )
+    parser = argparse.ArgumentParser(prog="progsim", description="progsim's Python tools")
     commands = parser.add_subparsers(dest="command", required=True)
     sweep = commands.add_parser(
         "sweep",
@@ -71,27 +63,13 @@ def _parser() -> argparse.ArgumentParser:
         metavar="NAME=SPEC",
         help="a swept parameter (repeatable)",
     )
-    sweep.add_argument(
-        "--out", required=True, help="folder for runs.csv and contact_sheet.png"
-    )
-    sweep.add_argument(
-        "--scheduler", help="a Dask scheduler address (default: a local cluster)"
-    )
-    sweep.add_argument(
-        "--serial", action="store_true", help="run in this process, no Dask"
-    )
-    sweep.add_argument(
-        "--workers", type=int, help="local worker processes (default: cores)"
-    )
-    sweep.add_argument(
-        "--samples", type=int, help="random combinations instead of the grid"
-    )
-    sweep.add_argument(
-        "--seed", type=int, default=0, help="seed of --samples (default 0)"
-    )
-    sweep.add_argument(
-        "--steps", type=int, help="preview steps (default: the scene's duration)"
-    )
+    sweep.add_argument("--out", required=True, help="folder for runs.csv and contact_sheet.png")
+    sweep.add_argument("--scheduler", help="a Dask scheduler address (default: a local cluster)")
+    sweep.add_argument("--serial", action="store_true", help="run in this process, no Dask")
+    sweep.add_argument("--workers", type=int, help="local worker processes (default: cores)")
+    sweep.add_argument("--samples", type=int, help="random combinations instead of the grid")
+    sweep.add_argument("--seed", type=int, default=0, help="seed of --samples (default 0)")
+    sweep.add_argument("--steps", type=int, help="preview steps (default: the scene's duration)")
     return parser
 
 

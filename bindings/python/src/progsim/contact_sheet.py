@@ -26,9 +26,7 @@ def _draw_run(axes: Any, result: Any, limits: np.ndarray) -> None:
     """One panel: the run's surface, or its status when it failed."""
     axes.set_title(_title(result), fontsize=7)
     if result.positions is None:
-        axes.text2D(
-            0.5, 0.5, result.status, transform=axes.transAxes, ha="center", color="red"
-        )
+        axes.text2D(0.5, 0.5, result.status, transform=axes.transAxes, ha="center", color="red")
     else:
         x = result.positions
         axes.plot_trisurf(
@@ -41,9 +39,7 @@ def _draw_run(axes: Any, result: Any, limits: np.ndarray) -> None:
             edgecolor="k",
             alpha=0.9,
         )
-    for setter, (low, high) in zip(
-        (axes.set_xlim, axes.set_ylim, axes.set_zlim), limits
-    ):
+    for setter, (low, high) in zip((axes.set_xlim, axes.set_ylim, axes.set_zlim), limits):
         setter(low, high)
     axes.set_box_aspect(limits[:, 1] - limits[:, 0] + 1e-12)
     axes.set_axis_off()
@@ -60,9 +56,7 @@ def _limits(results: Sequence[Any]) -> np.ndarray:
     return np.column_stack([low - pad, high + pad])
 
 
-def draw_contact_sheet(
-    results: Sequence[Any], path: Union[str, Path], columns: int = 4
-) -> None:
+def draw_contact_sheet(results: Sequence[Any], path: Union[str, Path], columns: int = 4) -> None:
     """Writes a PNG with one 3D panel per run, all on the same axes' box."""
     import matplotlib
 
@@ -74,9 +68,7 @@ def draw_contact_sheet(
     figure = plt.figure(figsize=(3.0 * columns, 3.0 * rows), dpi=100)
     limits = _limits(results)
     for slot, result in enumerate(results):
-        _draw_run(
-            figure.add_subplot(rows, columns, slot + 1, projection="3d"), result, limits
-        )
+        _draw_run(figure.add_subplot(rows, columns, slot + 1, projection="3d"), result, limits)
     figure.tight_layout()
     figure.savefig(path)
     plt.close(figure)

@@ -443,7 +443,9 @@ class Hierarchy(NativeObject):
         Raises:
             OutOfRangeError: the level does not exist.
         """
-        return fetch_rows(self._call, lib.ps_hierarchy_get_faces, (self._level(level),), np.int32, out)
+        return fetch_rows(
+            self._call, lib.ps_hierarchy_get_faces, (self._level(level),), np.int32, out
+        )
 
     def tets(self, level: Optional[int] = None, out: Optional[np.ndarray] = None) -> np.ndarray:
         """Tets of a solid's ``level`` (default: the finest) as an int32 (k, 4) array of

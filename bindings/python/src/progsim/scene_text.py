@@ -94,7 +94,5 @@ def override(scene: Mapping[str, Any], path: str, value: Any) -> Dict[str, Any]:
             else:
                 node = node.setdefault(key, {})
         else:
-            raise InvalidSceneError(
-                f"scene path {path}: {where} is not an object or a list"
-            )
+            raise InvalidSceneError(f"scene path {path}: {where} is not an object or a list")
     return result

@@ -123,6 +123,7 @@ _DEF_FIELDS: Dict[str, str] = {
     if name.startswith(_GROUPS)
 }
 
+
 #: Every name :meth:`Simulation.set_param` knows: the parameter table's ``group.name``
 #: entries, ``gravity.x/y/z`` and ``pressure``.
 def _parameter_names() -> Tuple[str, ...]:
@@ -192,7 +193,9 @@ class RefinementStats:
 
     @classmethod
     def _from_native(cls, raw: Any) -> "RefinementStats":
-        return cls(**{name: getattr(raw, name) for name, _ in ffi.typeof("ps_refinement_stats").fields})
+        return cls(
+            **{name: getattr(raw, name) for name, _ in ffi.typeof("ps_refinement_stats").fields}
+        )
 
 
 @dataclass(frozen=True)
@@ -916,8 +919,14 @@ class Simulation(NativeObject):
             InvalidArgumentError: a zero or non-finite axis, a vector without 3 components.
         """
         self._set_motion(
-            lib.ps_sim_set_handle_motion, handle, "handle", velocity, axis, center,
-            angular_velocity, offset,
+            lib.ps_sim_set_handle_motion,
+            handle,
+            "handle",
+            velocity,
+            axis,
+            center,
+            angular_velocity,
+            offset,
         )
 
     def _set_motion(self, setter, index, name, velocity, axis, center, angular_velocity, offset):
@@ -968,12 +977,17 @@ class Simulation(NativeObject):
                 interpolation.
         """
         self._set_keyframes(
-            lib.ps_sim_set_handle_keyframes, handle, "handle", times, translations, axes,
-            angles, interpolation,
+            lib.ps_sim_set_handle_keyframes,
+            handle,
+            "handle",
+            times,
+            translations,
+            axes,
+            angles,
+            interpolation,
         )
 
-    def _set_keyframes(self, setter, index, name, times, translations, axes, angles,
-                       interpolation):
+    def _set_keyframes(self, setter, index, name, times, translations, axes, angles, interpolation):
         rows = _keyframe_rows(times, translations, axes, angles)
         self._call(
             setter,
@@ -1139,8 +1153,14 @@ class Simulation(NativeObject):
             InvalidArgumentError: a zero or non-finite axis, a vector without 3 components.
         """
         self._set_motion(
-            lib.ps_sim_set_obstacle_motion, obstacle, "obstacle", velocity, axis, center,
-            angular_velocity, offset,
+            lib.ps_sim_set_obstacle_motion,
+            obstacle,
+            "obstacle",
+            velocity,
+            axis,
+            center,
+            angular_velocity,
+            offset,
         )
 
     def set_obstacle_keyframes(
@@ -1160,8 +1180,14 @@ class Simulation(NativeObject):
             InvalidArgumentError: as :meth:`set_handle_keyframes`.
         """
         self._set_keyframes(
-            lib.ps_sim_set_obstacle_keyframes, obstacle, "obstacle", times, translations, axes,
-            angles, interpolation,
+            lib.ps_sim_set_obstacle_keyframes,
+            obstacle,
+            "obstacle",
+            times,
+            translations,
+            axes,
+            angles,
+            interpolation,
         )
 
     def set_ground(

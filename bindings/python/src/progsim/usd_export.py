@@ -60,9 +60,7 @@ def write_usd(
     if frames_per_second is None:
         frames_per_second = 1.0 / sim.get_param("simulation.time_step")
     stage = Usd.Stage.CreateNew(str(path))
-    UsdGeom.SetStageUpAxis(
-        stage, UsdGeom.Tokens.y if up_axis == "Y" else UsdGeom.Tokens.z
-    )
+    UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.y if up_axis == "Y" else UsdGeom.Tokens.z)
     UsdGeom.SetStageMetersPerUnit(stage, 1.0)
     stage.SetTimeCodesPerSecond(frames_per_second)
     stage.SetStartTimeCode(0)

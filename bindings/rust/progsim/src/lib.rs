@@ -89,6 +89,25 @@ pub fn library_version_string() -> &'static str {
     unsafe { error::static_str(sys::ps_version_string()) }
 }
 
+/// Fixes the threads of progsim's parallel loops for the whole process (1 to 1024), or `0` to
+/// let the library choose (the default): the cores other processes leave idle, sampled every
+/// 0.25 s while it computes, so that a loaded machine needs no `OMP_WAIT_POLICY`.
+/// `OMP_NUM_THREADS`, if set, caps the automatic count. Any other value is
+/// [`Status::InvalidArgument`] and leaves the setting unchanged.
+pub fn set_threads(threads: i32) -> Result<()> {
+    // SAFETY: takes a value; thread-safe.
+    error::check_thread(unsafe { sys::ps_set_threads(threads) })
+}
+
+/// `(setting, current)`: the value of [`set_threads`] (0: automatic) and the threads a large
+/// parallel loop gets now.
+pub fn threads() -> Result<(i32, i32)> {
+    let (mut setting, mut current) = (0, 0);
+    // SAFETY: both pointers are valid for one write; thread-safe.
+    error::check_thread(unsafe { sys::ps_get_threads(&mut setting, &mut current) })?;
+    Ok((setting, current))
+}
+
 /// One named option of [`Simulation::set_choice`] (the choice table; scene keys of the same
 /// names).
 #[derive(Clone, Debug, PartialEq, Eq)]
