@@ -1,0 +1,143 @@
+// Our side of the contact comparison with IPC Toolkit (bench/contact_peer.py runs both on the
+// same frames): reads one frame pair (a triangle mesh at the start and end of a linear step),
+// times our broad phase, barrier value, gradient and Hessian, and additive CCD on it, and
+// prints one JSON object with the medians and the counts (candidates, active pairs, step).
+//
+// usage: bench_contact_peer frames.bin dhat threads [repeats]
+//   frames.bin: int64 |V|, int64 |F|, then float64 V0 (|V| x 3), float64 V1 (|V| x 3) and
+//   int32 F (|F| x 3), all row-major, native byte order
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bench_main.hpp"
+#include "common/thread_budget.hpp"
+#include "contact/broad_phase.hpp"
+#include "contact/contact_potential.hpp"
+
+using namespace progsim;
+
+namespace {
+
+struct Frames {
+  Positions start, end;
+  Faces faces;
+};
+
+template <class T>
+void read_exactly(std::ifstream& in, T* data, std::size_t count, const std::string& path) {
+  in.read(reinterpret_cast<char*>(data), static_cast<std::streamsize>(count * sizeof(T)));
+  if (!in) throw std::runtime_error(path + ": shorter than its header says");
+}
+
+Frames read_frames(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::int64_t counts[2];
+  read_exactly(in, counts, 2, path);
+  if (counts[0] < 3 || counts[1] < 1 || counts[0] > 50'000'000 || counts[1] > 100'000'000)
+    throw std::runtime_error(path + ": implausible vertex or face count");
+  Frames f{Positions(counts[0], 3), Positions(counts[0], 3), Faces(counts[1], 3)};
+  read_exactly(in, f.start.data(), f.start.size(), path);
+  read_exactly(in, f.end.data(), f.end.size(), path);
+  read_exactly(in, f.faces.data(), f.faces.size(), path);
+  if (f.faces.minCoeff() < 0 || f.faces.maxCoeff() >= counts[0])
+    throw std::runtime_error(path + ": a face index is out of range");
+  return f;
+}
+
+/// Median wall seconds of `repeats` calls of `work`.
+template <class Work>
+double median_seconds(int repeats, Work work) {
+  std::vector<double> seconds;
+  for (int r = 0; r < repeats; ++r) {
+    const auto begin = std::chrono::steady_clock::now();
+    work();
+    seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
+  }
+  std::nth_element(seconds.begin(), seconds.begin() + repeats / 2, seconds.end());
+  return seconds[repeats / 2];
+}
+
+Vector dofs_of(const Positions& p) {
+  return Eigen::Map<const Vector>(p.data(), p.size());
+}
+
+int run(int argc, char** argv) {
+  if (argc < 4) throw std::invalid_argument("frames.bin, dhat and threads are required");
+  const Frames frames = read_frames(argv[1]);
+  const double dhat = std::stod(argv[2]);
+  set_thread_budget(std::stoi(argv[3]));
+  const int repeats = argc > 4 ? std::stoi(argv[4]) : 5;
+  if (!(dhat > 0) || repeats < 1) throw std::invalid_argument("dhat and repeats must be > 0");
+
+  const Eigen::Index n = frames.start.rows();
+  const std::vector<double> no_offset(n, 0.0), no_friction(n, 0.0);
+  const CollisionMesh mesh =
+      build_collision_mesh(frames.start, frames.faces, no_offset, no_friction, {});
+  CandidateSet static_set, swept_set;
+  const double t_static = median_seconds(
+      repeats, [&] { find_candidates(mesh, frames.start, frames.start, dhat, static_set); });
+  const double t_swept = median_seconds(
+      repeats, [&] { find_candidates(mesh, frames.start, frames.end, dhat, swept_set); });
+
+  // The barrier over the static candidates at the start (IPC eq. 7), κ = 1 N/m³.
+  ContactPotential barrier(mesh, dhat, 1.0, std::nullopt);
+  const Vector x = dofs_of(frames.start);
+  barrier.begin_solve(x);
+  double energy = 0;
+  const double t_value = median_seconds(repeats, [&] { energy = barrier.value(x); });
+  Vector gradient(x.size());
+  const double t_gradient = median_seconds(repeats, [&] {
+    gradient.setZero();
+    barrier.add_gradient(x, gradient);
+  });
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::SparseMatrix<double> hessian(x.size(), x.size());
+  const std::int64_t active_before = barrier.stats().active_pairs;
+  const double t_hessian = median_seconds(repeats, [&] {
+    triplets.clear();
+    barrier.append_hessian_triplets(x, true, triplets);
+    hessian.setFromTriplets(triplets.begin(), triplets.end());
+  });
+  const std::int64_t active = (barrier.stats().active_pairs - active_before) / repeats;
+  const double t_triplets = median_seconds(repeats, [&] {
+    triplets.clear();
+    barrier.append_hessian_triplets(x, true, triplets);
+  });
+
+  // CCD of the whole step: its broad phase (swept boxes grown by d̂) and additive CCD.
+  const Vector step = dofs_of(frames.end) - x;
+  double alpha = 0;
+  const double ccd_before = barrier.stats().ccd_seconds;
+  const double t_ccd_step = median_seconds(repeats, [&] { alpha = barrier.max_step(x, step); });
+  const double t_ccd_narrow = (barrier.stats().ccd_seconds - ccd_before) / repeats;
+
+  std::printf(
+      "{\"vertices\": %ld, \"faces\": %ld, \"threads\": %d, \"static_vf\": %zu, "
+      "\"static_ee\": %zu, \"swept_vf\": %zu, \"swept_ee\": %zu, \"active\": %ld, "
+      "\"energy\": %.17g, \"gradient_norm\": %.17g, \"hessian_nonzeros\": %ld, \"alpha\": %.17g, "
+      "\"broad_static\": %.6g, \"broad_swept\": %.6g, \"value\": %.6g, \"gradient\": %.6g, "
+      "\"hessian\": %.6g, \"hessian_triplets\": %.6g, \"ccd_narrow\": %.6g, \"ccd_step\": %.6g}\n",
+      static_cast<long>(n), static_cast<long>(frames.faces.rows()), thread_budget(),
+      static_set.vertex_face.size(), static_set.edge_edge.size(), swept_set.vertex_face.size(),
+      swept_set.edge_edge.size(), static_cast<long>(active), energy, gradient.norm(),
+      static_cast<long>(hessian.nonZeros()), alpha, t_static, t_swept, t_value, t_gradient,
+      t_hessian, t_triplets, t_ccd_narrow, t_ccd_step);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::guarded_main(argc, argv, "bench_contact_peer frames.bin dhat threads [repeats]",
+                             run);
+}
