@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "common/error.hpp"
 #include "common/parallel.hpp"
@@ -21,6 +22,13 @@ constexpr double kCcdRescaling = 0.1;
 constexpr double kSmallGapFraction = 0.01;
 /// Cap on the adaptive growth of κ.
 constexpr double kMaxStiffnessGrowth = 1e8;
+
+/// ∇ of a point's squared distance to the ground, (n·x − h)²: 2(n·x − h) n on the point (12).
+Vec12 ground_distance_squared_gradient(const GroundPlane& ground, const Vec12& xs) {
+  Vec12 grad = Vec12::Zero();
+  grad.head<3>() = 2.0 * (ground.normal.dot(xs.head<3>()) - ground.height) * ground.normal;
+  return grad;
+}
 
 }  // namespace
 
@@ -70,11 +78,9 @@ void ContactPotential::distance_squared_derivatives_of(const Pair& pair, const V
                                                        const ClosestPair& closest, Vec12& grad,
                                                        Mat12& hess) const {
   if (pair.kind != Pair::Kind::ground) return distance_squared_derivatives(xs, closest, grad, hess);
-  const Vec3& n = ground_->normal;  // D = (n·x − h)²
-  grad.setZero();
+  grad = ground_distance_squared_gradient(*ground_, xs);
   hess.setZero();
-  grad.head<3>() = 2.0 * (n.dot(xs.head<3>()) - ground_->height) * n;
-  hess.topLeftCorner<3, 3>() = 2.0 * n * n.transpose();
+  hess.topLeftCorner<3, 3>() = 2.0 * ground_->normal * ground_->normal.transpose();
 }
 
 double ContactPotential::mollifier_threshold_of(const Pair& pair) const {
@@ -93,20 +99,36 @@ double ContactPotential::pair_energy(const Pair& pair, const Vec12& xs, Vec12* g
   const bool edge_edge = pair.kind == Pair::Kind::edge_edge;
   const double eps_x = edge_edge ? mollifier_threshold_of(pair) : 0.0;
   if (!grad) return edge_edge ? mollifier(xs, eps_x) * b : b;
+  if (!hess) return pair_gradient(pair, xs, closest, s, s_hat, b, eps_x, *grad);
   Vec12 gd;
   Mat12 hd;
   distance_squared_derivatives_of(pair, xs, closest, gd, hd);
   const double b1 = stiffness_ * barrier_first_derivative(s, s_hat);
   const double b2 = stiffness_ * barrier_second_derivative(s, s_hat);
   *grad = b1 * gd;  // ∇(κb) = κ b' ∇d² (IPC eq. 7 per pair)
-  if (hess) *hess = b2 * gd * gd.transpose() + b1 * hd;
+  *hess = b2 * gd * gd.transpose() + b1 * hd;
   if (!edge_edge) return b;
   double m;
   Vec12 gm;
   Mat12 hm;
   mollifier_derivatives(xs, eps_x, m, gm, hm);  // product rule for m·b (IPC eq. 23)
-  if (hess) *hess = b * hm + gm * grad->transpose() + *grad * gm.transpose() + m * *hess;
+  *hess = b * hm + gm * grad->transpose() + *grad * gm.transpose() + m * *hess;
   *grad = b * gm + m * *grad;
+  return m * b;
+}
+
+double ContactPotential::pair_gradient(const Pair& pair, const Vec12& xs,
+                                       const ClosestPair& closest, double s, double s_hat, double b,
+                                       double eps_x, Vec12& grad) const {
+  if (pair.kind == Pair::Kind::ground)
+    grad = ground_distance_squared_gradient(*ground_, xs);
+  else
+    distance_squared_gradient(xs, closest, grad);
+  grad *= stiffness_ * barrier_first_derivative(s, s_hat);  // ∇(κb) = κ b' ∇d² (IPC eq. 7)
+  if (pair.kind != Pair::Kind::edge_edge) return b;
+  Vec12 gm;
+  const double m = mollifier_gradient(xs, eps_x, gm);
+  grad = b * gm + m * grad;  // product rule for m·b (IPC eq. 23)
   return m * b;
 }
 
@@ -129,11 +151,12 @@ double ContactPotential::value(const Vector& x) const {
 void ContactPotential::measure_distances(const Positions& positions) const {
   const int n = num_items();
   distances_squared_.resize(n);
+  closest_.resize(n);
 #pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (int k = 0; k < n; ++k) {
     const Pair p = pair(k);
     distances_squared_[k] =
-        pair_distance_squared(p, stencil_positions(p.vertices, positions), ground());
+        pair_distance_squared(p, stencil_positions(p.vertices, positions), ground(), &closest_[k]);
   }
 }
 
@@ -148,20 +171,74 @@ const std::vector<int>& ContactPotential::active_items(const Positions& position
   return active_;
 }
 
+/// An active vertex–face item keyed by the barrier it evaluates.
+struct ContactPotential::KeyedItem {
+  std::array<int, 4> key;  ///< distance type, the point, the other feature's sorted vertices
+  double offset;
+  int item;
+  bool operator<(const KeyedItem& o) const {
+    return std::tie(key, offset, item) < std::tie(o.key, o.offset, o.item);
+  }
+};
+
+bool ContactPotential::evaluates_a_vertex_barrier(const Pair& p, const ClosestPair& c,
+                                                  const Positions& positions) const {
+  if (c.type != DistanceType::point_point && c.type != DistanceType::point_edge) return false;
+  if (p.kind == Pair::Kind::vertex_face) return true;
+  // An edge–edge pair nearest at an endpoint is that vertex–vertex or vertex–edge barrier
+  // where its mollifier is 1 (IPC eq. 23: ∇m and ∇²m vanish there too).
+  return p.kind == Pair::Kind::edge_edge &&
+         mollifier(stencil_positions(p.vertices, positions), mollifier_threshold_of(p)) == 1.0;
+}
+
+const std::vector<ContactPotential::ActiveGroup>& ContactPotential::active_groups(
+    const Positions& positions) const {
+  std::vector<KeyedItem>& keyed = keyed_;  // reused: no allocation once grown
+  keyed.clear();
+  groups_.clear();
+  for (int k : active_items(positions)) {
+    const Pair p = pair(k);
+    const ClosestPair& c = closest_[k];
+    if (!evaluates_a_vertex_barrier(p, c, positions)) {
+      groups_.push_back({k, 1});
+      continue;
+    }
+    const int point = p.vertices[c.vertices[0]], other = p.vertices[c.vertices[1]];
+    const std::array<int, 4> key =
+        c.type == DistanceType::point_point  // symmetric in its two vertices
+            ? std::array<int, 4>{0, std::min(point, other), std::max(point, other), -1}
+            : std::array<int, 4>{1, point, std::min(other, p.vertices[c.vertices[2]]),
+                                 std::max(other, p.vertices[c.vertices[2]])};
+    keyed.push_back({key, p.offset, k});
+  }
+  std::sort(keyed.begin(), keyed.end());
+  for (std::size_t i = 0; i < keyed.size();) {
+    std::size_t j = i + 1;
+    while (j < keyed.size() && keyed[j].key == keyed[i].key && keyed[j].offset == keyed[i].offset)
+      ++j;
+    groups_.push_back({keyed[i].item, static_cast<int>(j - i)});
+    i = j;
+  }
+  std::sort(groups_.begin(), groups_.end(),
+            [](const ActiveGroup& l, const ActiveGroup& r) { return l.item < r.item; });
+  return groups_;
+}
+
 void ContactPotential::add_gradient(const Vector& x, Vector& g) const {
   ScopedTimer timer(stats_.assembly_seconds);
   gather_positions(x, positions_);
-  const std::vector<int>& items = active_items(positions_);
-  const int n = static_cast<int>(items.size());
+  const std::vector<ActiveGroup>& groups = active_groups(positions_);
+  const int n = static_cast<int>(groups.size());
   std::vector<Vec12>& grads = gradients_;  // reused: no allocation once grown
   grads.resize(n);
 #pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (int i = 0; i < n; ++i) {
-    const Pair p = pair(items[i]);
+    const Pair p = pair(groups[i].item);
     pair_energy(p, stencil_positions(p.vertices, positions_), &grads[i], nullptr);
+    grads[i] *= groups[i].count;
   }
   for (int i = 0; i < n; ++i) {  // serial scatter: deterministic
-    const Pair p = pair(items[i]);
+    const Pair p = pair(groups[i].item);
     for (int k = 0; k < 4; ++k)
       if (p.vertices[k] >= 0 && !mesh_.is_obstacle(p.vertices[k]))
         g.segment<3>(3 * p.vertices[k]) += grads[i].segment<3>(3 * k);
@@ -201,18 +278,19 @@ void ContactPotential::append_hessian_triplets(const Vector& x, bool project,
                                                std::vector<Eigen::Triplet<double>>& out) const {
   ScopedTimer timer(stats_.assembly_seconds);
   gather_positions(x, positions_);
-  const std::vector<int>& items = active_items(positions_);
-  const int n = static_cast<int>(items.size());
-  stats_.active_pairs += n;
+  const std::vector<ActiveGroup>& groups = active_groups(positions_);
+  const int n = static_cast<int>(groups.size());
+  stats_.active_pairs += static_cast<std::int64_t>(active_.size());
   std::vector<LocalHessian>& hessians = hessians_;  // reused: no allocation once grown
   hessians.resize(n);
 #pragma omp parallel for schedule(static) num_threads(loop_threads(n, kMinParallelItems / 16))
   for (int i = 0; i < n; ++i) {
-    const Pair p = pair(items[i]);
+    const Pair p = pair(groups[i].item);
     Vec12 grad;
     Mat12 h;
     pair_energy(p, stencil_positions(p.vertices, positions_), &grad, &h);
     hessians[i] = restricted_hessian(p, h, project);
+    hessians[i].matrix *= groups[i].count;  // after the projection: it commutes with a count
   }
   for (const LocalHessian& local : hessians)
     for (int a = 0; a < local.count; ++a)

@@ -120,6 +120,10 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   double mollifier_threshold_of(const Pair& pair) const;
   /// κ m b of one pair at stencil positions xs; gradient and Hessian when non-null.
   double pair_energy(const Pair& pair, const Vec12& xs, Vec12* grad, Mat12* hess) const;
+  /// pair_energy()'s gradient alone, from the pair's closest features, barrier argument s and
+  /// activation ŝ, barrier value b = κ b(s, ŝ) and mollifier threshold ε_x (0 unless edge–edge).
+  double pair_gradient(const Pair& pair, const Vec12& xs, const ClosestPair& closest, double s,
+                       double s_hat, double b, double eps_x, Vec12& grad) const;
   /// Spreads carried_motion() through the active shell–shell pairs (of active_): a vertex
   /// touching carried ones is carried too. `carried` > 0 marks the carried vertices.
   void carry_through_shell_contacts(Positions& motion, Eigen::VectorXi& carried) const;
@@ -127,6 +131,21 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   void measure_distances(const Positions& positions) const;
   /// The items within the activation gap (a reference to a reused buffer).
   const std::vector<int>& active_items(const Positions& positions) const;
+  /// An active item standing for `count` items with the same barrier.
+  struct ActiveGroup {
+    int item;
+    int count;
+  };
+  /// Whether pair p, whose closest features are c, evaluates the barrier of one vertex–vertex
+  /// or vertex–edge pair (and may share it with other items).
+  bool evaluates_a_vertex_barrier(const Pair& p, const ClosestPair& c,
+                                  const Positions& positions) const;
+  /// The active items, those with the same barrier grouped: pairs whose closest features are
+  /// one vertex–vertex or vertex–edge pair at the same offset (a vertex nearest a mesh vertex
+  /// or edge is a candidate of every face around it, and of the edge–edge pairs of its
+  /// edges). Each group is evaluated once and weighted by its count, as IPC Toolkit weights
+  /// duplicate collisions; the energy is the same. Ordered by item (a reused buffer).
+  const std::vector<ActiveGroup>& active_groups(const Positions& positions) const;
   struct LocalHessian;
   LocalHessian restricted_hessian(const Pair& p, const Mat12& h, bool project) const;
   /// Positions of every collision vertex: shell from x, obstacles from obstacle_positions_.
@@ -160,6 +179,10 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   // Per-evaluation work buffers, reused so that Newton iterations do not reallocate them.
   mutable std::vector<double> distances_squared_;
   mutable std::vector<int> active_;
+  mutable std::vector<ClosestPair> closest_;  ///< per item, by measure_distances()
+  mutable std::vector<ActiveGroup> groups_;
+  struct KeyedItem;
+  mutable std::vector<KeyedItem> keyed_;  ///< active_groups()' sort buffer
   mutable std::vector<Vec12> gradients_;
   mutable std::vector<LocalHessian> hessians_;
   Vector moved_;

@@ -14,6 +14,9 @@ double mollifier_threshold(const Vec12& rest_x);
 /// at edge–edge stencil positions x (12).
 double mollifier(const Vec12& x, double eps_x);
 
+/// m(x) with its gradient (12) (zero where c ≥ ε_x), without the Hessian's cost.
+double mollifier_gradient(const Vec12& x, double eps_x, Vec12& grad);
+
 /// m(x) with its gradient (12) and exact Hessian (12 × 12) w.r.t. the stencil DOFs (both zero
 /// where c ≥ ε_x).
 void mollifier_derivatives(const Vec12& x, double eps_x, double& m, Vec12& grad, Mat12& hess);

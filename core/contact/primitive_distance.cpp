@@ -238,6 +238,13 @@ void distance_squared_derivatives(const Vec12& x, const ClosestPair& pair, Vec12
   }
 }
 
+void distance_squared_gradient(const Vec12& x, const ClosestPair& pair, Vec12& grad) {
+  const Eigen::Vector4d w = closest_point_weights(x, pair);
+  Vec3 r = Vec3::Zero();  // r = Σ_k w_k x_k, from the second primitive's closest point
+  for (int k = 0; k < 4; ++k) r += w[k] * vertex(x, k);
+  for (int k = 0; k < 4; ++k) grad.segment<3>(3 * k) = 2.0 * w[k] * r;  // envelope theorem
+}
+
 Eigen::Vector4d closest_point_weights(const Vec12& x, const ClosestPair& pair) {
   const std::array<int, 4>& v = pair.vertices;
   const Mat3 r = differences(x, differences_of(pair));
@@ -268,17 +275,23 @@ Eigen::Vector4d closest_point_weights(const Vec12& x, const ClosestPair& pair) {
   return v[0] < 2 ? w : Eigen::Vector4d(-w);
 }
 
-double cross_squared_norm_derivatives(const Vec3& a, const Vec3& b, Vec6& grad, Mat6& hess) {
+Vec6 cross_squared_norm_gradient(const Vec3& a, const Vec3& b) {
   // ‖a × b‖² = ‖a‖²‖b‖² − (a·b)²: ∇_a = 2 b × (a × b), ∇_b = 2 (a × b) × a.
   const Vec3 c = a.cross(b);
+  Vec6 grad;
   grad << 2.0 * b.cross(c), 2.0 * c.cross(a);
+  return grad;
+}
+
+double cross_squared_norm_derivatives(const Vec3& a, const Vec3& b, Vec6& grad, Mat6& hess) {
+  grad = cross_squared_norm_gradient(a, b);
   const Mat3 id = Mat3::Identity();
   hess.topLeftCorner<3, 3>() = 2.0 * (b.squaredNorm() * id - b * b.transpose());
   hess.bottomRightCorner<3, 3>() = 2.0 * (a.squaredNorm() * id - a * a.transpose());
   hess.topRightCorner<3, 3>() =
       4.0 * a * b.transpose() - 2.0 * b * a.transpose() - 2.0 * a.dot(b) * id;
   hess.bottomLeftCorner<3, 3>() = hess.topRightCorner<3, 3>().transpose();
-  return c.squaredNorm();
+  return a.cross(b).squaredNorm();
 }
 
 }  // namespace progsim

@@ -49,11 +49,20 @@ double distance_squared(const Vec12& x, const ClosestPair& pair);
 void distance_squared_derivatives(const Vec12& x, const ClosestPair& pair, Vec12& grad,
                                   Mat12& hess);
 
+/// Gradient (12) of distance_squared(x, pair) alone, without the Hessian's cost: the
+/// closest-point parameters are stationary, so ∂d²/∂x_k = 2 w_k r (envelope theorem) with w and
+/// r of closest_point_weights(). Equal to distance_squared_derivatives()'s gradient up to
+/// rounding.
+void distance_squared_gradient(const Vec12& x, const ClosestPair& pair, Vec12& grad);
+
 /// Weights w (4) with r = Σ_k w_k x_k the vector between the pair's closest points, pointing
 /// from the second primitive (triangle, edge b) to the first (point, edge a); Σ_k w_k = 0 and
 /// ‖r‖² = distance_squared(x, pair). E.g. point–triangle interior: (1, −β0, −β1, −β2) with β
 /// the barycentric coordinates of p's projection; edge–edge: (1 − α, α, −(1 − β), −β).
 Eigen::Vector4d closest_point_weights(const Vec12& x, const ClosestPair& pair);
+
+/// Gradient of ‖a × b‖² w.r.t. (a, b): (2 b × (a × b), 2 (a × b) × a).
+Vec6 cross_squared_norm_gradient(const Vec3& a, const Vec3& b);
 
 /// ‖a × b‖² with its gradient (∂/∂a, ∂/∂b) and Hessian (6 × 6) w.r.t. (a, b).
 double cross_squared_norm_derivatives(const Vec3& a, const Vec3& b, Vec6& grad, Mat6& hess);

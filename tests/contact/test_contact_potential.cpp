@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 
+#include "common/constants.hpp"
 #include "common/error.hpp"
 #include "contact/broad_phase.hpp"
 #include "contact/contact_potential.hpp"
@@ -78,6 +79,34 @@ TEST(ContactPotential, DerivativesMatchFiniteDifferencesForEveryDistanceType) {
       ASSERT_GT(contact.value(x), 0.0) << "the pair must be inside the barrier's range";
       expect_matches_finite_differences(contact, x, 1e-8);
     }
+  }
+}
+
+TEST(ContactPotential, AVertexNearestAMeshVertexOrEdgeCountsEveryFaceAroundIt) {
+  // A pyramid of six faces around its apex, vertex 0, and a triangle whose vertex 7 is near
+  // it: above the apex every face's pair is the same vertex–vertex barrier, off the middle of
+  // a ridge both faces' pairs are the same vertex–edge barrier (robustly: the pyramid is
+  // convex there). Each is evaluated once and counted per face (IPC Toolkit's weights); the
+  // value sums every pair. Against FD of it.
+  Positions x(10, 3);
+  x.row(0) << 0.0, 0.0, 0.2;
+  for (int k = 0; k < 6; ++k) x.row(1 + k) << std::cos(k * kPi / 3), std::sin(k * kPi / 3), 0.0;
+  Faces faces(7, 3);
+  for (int k = 0; k < 6; ++k) faces.row(k) << 0, 1 + k, 1 + (k + 1) % 6;
+  faces.row(6) << 7, 8, 9;
+  const Vec3 ridge_middle(0.5, 0.0, 0.1), ridge_normal = Vec3(0.2, 0.0, 1.0).normalized();
+  for (const Vec3& near :
+       {Vec3(0, 0, 0.2 + 0.4 * kDhat), Vec3(ridge_middle + 0.3 * kDhat * ridge_normal)}) {
+    x.row(7) = near.transpose();
+    x.row(8) = (near + Vec3(0.3, 0.1, 0.4)).transpose();
+    x.row(9) = (near + Vec3(-0.1, 0.3, 0.5)).transpose();
+    ContactPotential contact(build_collision_mesh(x, faces, std::vector<double>(10, 0.0),
+                                                  std::vector<double>(10, 0.5), {}),
+                             kDhat, 3.0, std::nullopt);
+    const Vector dofs = as_dofs(x);
+    contact.begin_solve(dofs);
+    ASSERT_GT(contact.value(dofs), 0.0);
+    expect_matches_finite_differences(contact, dofs, 1e-8);
   }
 }
 

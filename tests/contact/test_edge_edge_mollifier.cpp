@@ -32,6 +32,10 @@ void expect_derivatives_match(const Vec12& x, double eps_x, double step, double 
   };
   EXPECT_LT(relative_error(g, finite_difference_gradient(value, x, step), 1e-8), tolerance)
       << "gradient, x = " << x.transpose();
+  Vec12 g_alone;  // the gradient-only path, against the same FD
+  EXPECT_EQ(mollifier_gradient(x, eps_x, g_alone), m);
+  EXPECT_LT(relative_error(g_alone, finite_difference_gradient(value, x, step), 1e-8), tolerance)
+      << "gradient alone, x = " << x.transpose();
   EXPECT_LT(relative_error(h, finite_difference_hessian(gradient, x, step), 1e-8), tolerance)
       << "Hessian, x = " << x.transpose();
   EXPECT_LE((h - h.transpose()).cwiseAbs().maxCoeff(), 1e-12 * h.cwiseAbs().maxCoeff());

@@ -36,6 +36,10 @@ void expect_derivatives_match(const Vec12& x, const ClosestPair& pair, double st
   EXPECT_TRUE(g.allFinite() && h.allFinite());
   EXPECT_LT(relative_error(g, finite_difference_gradient(value, x, step), 1e-8), tolerance)
       << "gradient, type " << int(pair.type) << "\nx = " << x.transpose();
+  Vec12 g_alone;  // the gradient-only path (closest-point weights), against the same FD
+  distance_squared_gradient(x, pair, g_alone);
+  EXPECT_LT(relative_error(g_alone, finite_difference_gradient(value, x, step), 1e-8), tolerance)
+      << "gradient alone, type " << int(pair.type) << "\nx = " << x.transpose();
   EXPECT_LT(relative_error(h, finite_difference_hessian(gradient, x, step), 1e-8), tolerance)
       << "Hessian, type " << int(pair.type) << "\nx = " << x.transpose();
   EXPECT_LT((h - h.transpose()).cwiseAbs().maxCoeff(), 1e-12 * h.cwiseAbs().maxCoeff());
