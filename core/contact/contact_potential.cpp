@@ -149,6 +149,10 @@ double ContactPotential::value(const Vector& x) const {
 }
 
 void ContactPotential::measure_distances(const Positions& positions) const {
+  // Value, gradient and Hessian at one x measure the same pairs: measure them once.
+  if (measured_ && positions.rows() == measured_at_.rows() && positions == measured_at_) return;
+  measured_at_ = positions;
+  measured_ = true;
   const int n = num_items();
   distances_squared_.resize(n);
   closest_.resize(n);
@@ -304,6 +308,7 @@ void ContactPotential::append_hessian_triplets(const Vector& x, bool project,
 void ContactPotential::update_candidates(const Positions& p0, const Positions& p1) {
   ScopedTimer timer(stats_.broad_phase_seconds);
   find_candidates(mesh_, p0, p1, dhat_ + 2.0 * mesh_.max_offset(), candidates_, moving());
+  measured_ = false;
   ++stats_.broad_phase_runs;
   stats_.candidate_pairs += static_cast<std::int64_t>(candidates_.size());
 }
@@ -505,6 +510,7 @@ int ContactPotential::fit_offsets(const Vector& x) {
   lowered_.clear();  // pair() gives the full offsets below
   gather_positions(x, positions_);
   find_candidates(mesh_, positions_, positions_, 2.0 * mesh_.max_offset(), candidates_, moving());
+  measured_ = false;  // new candidates
   for (int k = 0; k < num_items(); ++k) {
     const Pair p = pair(k);
     const double d =

@@ -127,7 +127,9 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   /// Spreads carried_motion() through the active shell–shell pairs (of active_): a vertex
   /// touching carried ones is carried too. `carried` > 0 marks the carried vertices.
   void carry_through_shell_contacts(Positions& motion, Eigen::VectorXi& carried) const;
-  /// Squared distance of every item at `positions` into distances_squared_ (parallel).
+  /// Squared distance of every item at `positions` into distances_squared_ (parallel), and
+  /// its closest features into closest_; nothing when the candidates are those of the last
+  /// measurement and `positions` equal its positions.
   void measure_distances(const Positions& positions) const;
   /// The items within the activation gap (a reference to a reused buffer).
   const std::vector<int>& active_items(const Positions& positions) const;
@@ -180,6 +182,8 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   mutable std::vector<double> distances_squared_;
   mutable std::vector<int> active_;
   mutable std::vector<ClosestPair> closest_;  ///< per item, by measure_distances()
+  mutable Positions measured_at_;             ///< the positions of the last measure_distances()
+  mutable bool measured_ = false;  ///< distances_squared_ and closest_ hold at measured_at_
   mutable std::vector<ActiveGroup> groups_;
   struct KeyedItem;
   mutable std::vector<KeyedItem> keyed_;  ///< active_groups()' sort buffer

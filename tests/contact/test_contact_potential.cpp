@@ -110,6 +110,25 @@ TEST(ContactPotential, AVertexNearestAMeshVertexOrEdgeCountsEveryFaceAroundIt) {
   }
 }
 
+TEST(ContactPotential, MeasuresThePairsAgainWhenTheCandidatesChange) {
+  // Distances measured at x are reused at the same x only while the candidates stay. B's edge
+  // (3, 4) crosses over A's edge (0, 1) within d̂; a CCD query at x that brings vertex 5 down
+  // to A adds vertex–face candidates ahead of the edge–edge ones. The gradient at x must then
+  // still be that of a potential that never saw the query.
+  const double gap = 0.4 * kDhat;
+  const TwoTriangles t = two_triangles({0.5, -0.3, gap}, {0.5, 0.3, gap}, {0.5, 0.0, 0.6});
+  const Vector x = as_dofs(t.x);
+  ContactPotential queried = make_contact(t, 0.0), fresh = make_contact(t, 0.0);
+  queried.begin_solve(x);
+  fresh.begin_solve(x);
+  ASSERT_NE(pt::analytic_gradient(queried, x), Vector::Zero(x.size()));
+  Vector down = Vector::Zero(x.size());
+  down(3 * 5 + 2) = -0.6;
+  queried.max_step(x, down);
+  EXPECT_EQ(queried.value(x), fresh.value(x));
+  EXPECT_EQ(pt::analytic_gradient(queried, x), pt::analytic_gradient(fresh, x));
+}
+
 TEST(ContactPotential, MovingVerticesLeaveOutOnlyPairsOfStillOnes) {
   // Triangle A in z = 0, B and C each with a vertex just above it, far from each other. With
   // only C moving, the energy loses B's pair, a constant as C moves; C's forces are unchanged.
