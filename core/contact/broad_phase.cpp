@@ -1,5 +1,7 @@
 #include "contact/broad_phase.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -210,7 +212,8 @@ class BoxGrid {
 };
 
 /// Every (query, target) of the listed boxes whose boxes overlap and that `accept` keeps, as
-/// indices into `queries` and `targets`, unsorted. A pair of small boxes is reported from
+/// indices into `queries` and `targets`, in the order of `query_ids` and, per query, of target
+/// (so sorted when `query_ids` ascend). A pair of small boxes is reported from
 /// exactly one cell, the one holding the lower corner of their overlap (the larger lower cell
 /// of the two, per axis); a large box is tested against every listed box of the other set.
 /// `accept` is asked first: it is cheaper than the box test.
@@ -223,13 +226,16 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& querie
   std::vector<Box> listed(target_ids.size());
   for (std::size_t k = 0; k < target_ids.size(); ++k) listed[k] = targets[target_ids[k]];
   const BoxGrid grid(listed, cell);
-  std::vector<std::array<int, 2>> pairs;
   const int n = static_cast<int>(query_ids.size());
-#pragma omp parallel num_threads(loop_threads(n))
+  const int threads = loop_threads(n);
+  // Contiguous blocks of queries in thread order, joined in that order: no global sort.
+  std::vector<std::vector<std::array<int, 2>>> per_thread(threads);
+#pragma omp parallel num_threads(threads)
   {
-    std::vector<std::array<int, 2>> local;
-#pragma omp for schedule(dynamic, 256) nowait
+    std::vector<std::array<int, 2>>& local = per_thread[omp_get_thread_num()];
+#pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {
+      const std::size_t first = local.size();
       const int q = query_ids[i];
       const Box& box = queries[q];
       auto consider = [&](int k) {
@@ -239,21 +245,25 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& querie
       const Cell query_lo = grid.cell_of(box.lo), query_hi = grid.cell_of(box.hi);
       if (BoxGrid::cell_count(query_lo, query_hi) > BoxGrid::kMaxCells) {
         for (int k = 0; k < static_cast<int>(listed.size()); ++k) consider(k);
-        continue;
-      }
-      for (int k : grid.large()) consider(k);
-      BoxGrid::for_each_cell_of(query_lo, query_hi, [&](const Cell& c) {
-        grid.for_each_in_cell(c, [&](int k) {
-          const Cell& target_lo = grid.lower_cell(k);
-          for (int a = 0; a < 3; ++a)
-            if (std::max(query_lo[a], target_lo[a]) != c[a]) return;  // reported elsewhere
-          consider(k);
+      } else {
+        for (int k : grid.large()) consider(k);
+        BoxGrid::for_each_cell_of(query_lo, query_hi, [&](const Cell& c) {
+          grid.for_each_in_cell(c, [&](int k) {
+            const Cell& target_lo = grid.lower_cell(k);
+            for (int a = 0; a < 3; ++a)
+              if (std::max(query_lo[a], target_lo[a]) != c[a]) return;  // reported elsewhere
+            consider(k);
+          });
         });
-      });
+      }
+      std::sort(local.begin() + static_cast<std::ptrdiff_t>(first), local.end());
     }
-#pragma omp critical
-    pairs.insert(pairs.end(), local.begin(), local.end());
   }
+  std::vector<std::array<int, 2>> pairs;
+  std::size_t total = 0;
+  for (const auto& local : per_thread) total += local.size();
+  pairs.reserve(total);
+  for (const auto& local : per_thread) pairs.insert(pairs.end(), local.begin(), local.end());
   return pairs;
 }
 
@@ -350,9 +360,9 @@ void find_candidates(const CollisionMesh& mesh, const Positions& p0, const Posit
         [&](int a, int b) { return (!edge_moves[b] || a < b) && edge_edge(a, b); });
     for (auto& pair : out.edge_edge)
       if (pair[1] < pair[0]) std::swap(pair[0], pair[1]);
-  }
-  std::sort(out.vertex_face.begin(), out.vertex_face.end());
-  std::sort(out.edge_edge.begin(), out.edge_edge.end());
+    std::sort(out.vertex_face.begin(), out.vertex_face.end());  // two lists joined
+    std::sort(out.edge_edge.begin(), out.edge_edge.end());      // pairs swapped
+  }  // without `moving`, the queries ascend: the pairs come sorted
 }
 
 }  // namespace progsim
