@@ -175,7 +175,7 @@ const std::vector<int>& ContactPotential::active_items(const Positions& position
   return active_;
 }
 
-/// An active vertex–face item keyed by the barrier it evaluates.
+/// An active item that evaluates a vertex–vertex or vertex–edge barrier, keyed by it.
 struct ContactPotential::KeyedItem {
   std::array<int, 4> key;  ///< distance type, the point, the other feature's sorted vertices
   double offset;
