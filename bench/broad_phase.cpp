@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "bench_main.hpp"
-#include "common/timer.hpp"
+#include "median_seconds.hpp"
 #include "mesh/mesh_generators.hpp"
 
 using namespace progsim;
@@ -80,15 +80,10 @@ struct Row {
 Row measure(const ClothOverSphere& s, Motion motion, int repeats) {
   const Positions p1 = end_positions(s, motion);
   const double inflation = 2e-3;  // d̂ = 1 mm on both boxes
-  std::vector<double> times;
   CandidateSet found;
-  for (int r = 0; r < repeats; ++r) {
-    Timer timer;
-    find_candidates(s.mesh, s.mesh.rest, p1, inflation, found);
-    times.push_back(timer.seconds());
-  }
-  std::nth_element(times.begin(), times.begin() + repeats / 2, times.end());
-  return {s.sheet.num_vertices(), name_of(motion), times[repeats / 2], found.size()};
+  const double seconds = bench::median_seconds(
+      repeats, [&] { find_candidates(s.mesh, s.mesh.rest, p1, inflation, found); });
+  return {s.sheet.num_vertices(), name_of(motion), seconds, found.size()};
 }
 
 }  // namespace

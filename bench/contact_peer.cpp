@@ -8,7 +8,6 @@
 //   int32 F (|F| x 3), all row-major, native byte order
 #include <Eigen/SparseCore>
 #include <algorithm>
-#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -21,8 +20,10 @@
 #include "common/thread_budget.hpp"
 #include "contact/broad_phase.hpp"
 #include "contact/contact_potential.hpp"
+#include "median_seconds.hpp"
 
 using namespace progsim;
+using progsim::bench::median_seconds;
 
 namespace {
 
@@ -51,20 +52,6 @@ Frames read_frames(const std::string& path) {
   if (f.faces.minCoeff() < 0 || f.faces.maxCoeff() >= counts[0])
     throw std::runtime_error(path + ": a face index is out of range");
   return f;
-}
-
-/// Median wall seconds of `repeats` calls of `work`.
-template <class Work>
-double median_seconds(int repeats, Work work) {
-  std::vector<double> seconds;
-  for (int r = 0; r < repeats; ++r) {
-    const auto begin = std::chrono::steady_clock::now();
-    work();
-    seconds.push_back(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
-  }
-  std::nth_element(seconds.begin(), seconds.begin() + repeats / 2, seconds.end());
-  return seconds[repeats / 2];
 }
 
 Vector dofs_of(const Positions& p) {
