@@ -19,6 +19,18 @@ long next_pattern_version() {
   return ++counter;
 }
 
+/// Index of entry (row, col) among m's stored nonzeros, or −1 when it has none.
+int slot_of(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& m, int row, int col) {
+  const int* begin = m.innerIndexPtr() + m.outerIndexPtr()[col];
+  const int* end = m.innerIndexPtr() + m.outerIndexPtr()[col + 1];
+  const int* it = std::lower_bound(begin, end, row);
+  return it != end && *it == row ? static_cast<int>(it - m.innerIndexPtr()) : -1;
+}
+
+/// A new solve keeps the pattern of the last one while at most this fraction of its entries go
+/// unused (bounding the fill of stale contact entries).
+constexpr double kMaxUnusedPatternFraction = 0.25;
+
 }  // namespace
 
 Problem::Problem(int num_dofs) : num_dofs_(num_dofs), fixed_(num_dofs, false) {}
@@ -108,6 +120,7 @@ void Problem::build_hessian_pattern() {
   std::copy(outer.begin(), outer.end(), hessian_.outerIndexPtr());
   std::copy(inner.begin(), inner.end(), hessian_.innerIndexPtr());
   std::fill(hessian_.valuePtr(), hessian_.valuePtr() + inner.size(), 0.0);
+  combined_ = SparseMatrix();  // hessian_slots_ referred to the old pattern
 }
 
 double Problem::value(const Vector& x) {
@@ -159,7 +172,9 @@ const Problem::SparseMatrix& Problem::hessian(const Vector& x, bool project_psd)
   return changing_terms_.empty() ? hessian_ : add_changing_pattern_terms(x, project_psd);
 }
 
-/// hessian_ + the reduced lower-triangle triplets of the terms whose pattern changes.
+/// hessian_ + the reduced lower-triangle triplets of the terms whose pattern changes, summed in
+/// a pattern that keeps every entry this solve has used (issue 33 §2): a contact set that only
+/// moves within it keeps the symbolic analysis, and no call builds a matrix from triplets.
 const Problem::SparseMatrix& Problem::add_changing_pattern_terms(const Vector& x,
                                                                  bool project_psd) {
   triplets_.clear();
@@ -174,19 +189,73 @@ const Problem::SparseMatrix& Problem::add_changing_pattern_terms(const Vector& x
     if (r >= 0 && c >= 0 && r >= c) triplets_[kept++] = Eigen::Triplet<double>(r, c, e.value());
   }
   triplets_.resize(kept);
+  const bool fits = locate_triplets_in_combined() && (!combined_is_stale_ || few_unused_entries());
+  if (!fits) grow_combined_pattern();
+  scatter_combined_values();
+  return combined_;
+}
+
+bool Problem::locate_triplets_in_combined() {
+  if (combined_.cols() != num_free()) return false;  // none since finalize()
+  const int n = static_cast<int>(triplets_.size());
+  triplet_slots_.resize(n);
+  int missing = 0;
+#pragma omp parallel for reduction(+ : missing) schedule(static) num_threads(loop_threads(n))
+  for (int i = 0; i < n; ++i) {
+    triplet_slots_[i] = slot_of(combined_, triplets_[i].row(), triplets_[i].col());
+    missing += triplet_slots_[i] < 0;
+  }
+  return missing == 0;
+}
+
+/// combined_'s pattern becomes hessian_'s, the entries kept in this solve (unless stale) and
+/// the triplets'; a pattern that differs from the previous one gets a new version.
+void Problem::grow_combined_pattern() {
+  const bool restart = combined_is_stale_ || combined_.cols() != num_free();
+  const SparseMatrix& base = restart ? hessian_ : combined_;
   changing_part_.resize(num_free(), num_free());
   changing_part_.setFromTriplets(triplets_.begin(), triplets_.end());
-  SparseMatrix sum = hessian_ + changing_part_;
-  sum.makeCompressed();
-  const bool same_pattern = sum.nonZeros() == combined_.nonZeros() &&
-                            sum.cols() == combined_.cols() &&
-                            std::equal(sum.outerIndexPtr(), sum.outerIndexPtr() + sum.cols() + 1,
-                                       combined_.outerIndexPtr()) &&
-                            std::equal(sum.innerIndexPtr(), sum.innerIndexPtr() + sum.nonZeros(),
-                                       combined_.innerIndexPtr());
+  SparseMatrix grown = base + changing_part_;
+  grown.makeCompressed();
+  const bool same_pattern =
+      grown.nonZeros() == combined_.nonZeros() && grown.cols() == combined_.cols() &&
+      std::equal(grown.outerIndexPtr(), grown.outerIndexPtr() + grown.cols() + 1,
+                 combined_.outerIndexPtr()) &&
+      std::equal(grown.innerIndexPtr(), grown.innerIndexPtr() + grown.nonZeros(),
+                 combined_.innerIndexPtr());
   if (!same_pattern) pattern_version_ = next_pattern_version();
-  combined_ = std::move(sum);
-  return combined_;
+  combined_ = std::move(grown);
+  combined_is_stale_ = false;
+  const int nnz = static_cast<int>(hessian_.nonZeros());
+  hessian_slots_.resize(nnz);
+  for (int c = 0; c < hessian_.cols(); ++c)
+    for (int i = hessian_.outerIndexPtr()[c]; i < hessian_.outerIndexPtr()[c + 1]; ++i)
+      hessian_slots_[i] = slot_of(combined_, hessian_.innerIndexPtr()[i], c);
+  locate_triplets_in_combined();
+}
+
+/// True when at most kMaxUnusedPatternFraction of combined_'s entries take no value now.
+bool Problem::few_unused_entries() {
+  used_.assign(combined_.nonZeros(), 0);
+  for (int slot : hessian_slots_) used_[slot] = 1;
+  for (int slot : triplet_slots_) used_[slot] = 1;
+  const long used = std::count(used_.begin(), used_.end(), 1);
+  const bool few = static_cast<double>(combined_.nonZeros() - used) <=
+                   kMaxUnusedPatternFraction * static_cast<double>(combined_.nonZeros());
+  combined_is_stale_ = !few;
+  return few;
+}
+
+/// combined_ = hessian_ + Σ triplets, in place (the triplets' sum is serial: deterministic).
+void Problem::scatter_combined_values() {
+  double* values = combined_.valuePtr();
+  std::fill(values, values + combined_.nonZeros(), 0.0);
+  const double* fixed_values = hessian_.valuePtr();
+  const int nnz = static_cast<int>(hessian_.nonZeros());
+#pragma omp parallel for schedule(static) num_threads(loop_threads(nnz))
+  for (int i = 0; i < nnz; ++i) values[hessian_slots_[i]] = fixed_values[i];
+  for (std::size_t i = 0; i < triplets_.size(); ++i)
+    values[triplet_slots_[i]] += triplets_[i].value();
 }
 
 void Problem::refresh_hessian() {
@@ -194,6 +263,7 @@ void Problem::refresh_hessian() {
 }
 
 void Problem::begin_solve(const Vector& x) {
+  combined_is_stale_ = true;  // a new solve checks how much of the pattern it still uses
   for (StepFilter* f : filters_) f->begin_solve(x);
 }
 

@@ -63,6 +63,9 @@ class Problem {
   void refresh_hessian();
 
   /// Forwards to every StepFilter term (see step_filter.hpp); without any: nothing, α = 1.
+  /// The Hessian pattern with terms of changing pattern keeps every entry it has held (explicit
+  /// zeros), so a contact set that comes and goes keeps the symbolic analysis; a new solve
+  /// restarts it from the present entries once more than a quarter of it goes unused.
   void begin_solve(const Vector& x);
   double max_step(const Vector& x, const Vector& p);
   bool end_iteration(const Vector& x);
@@ -83,6 +86,10 @@ class Problem {
   void build_reduction();
   void build_hessian_pattern();
   const SparseMatrix& add_changing_pattern_terms(const Vector& x, bool project_psd);
+  bool locate_triplets_in_combined();
+  void grow_combined_pattern();
+  bool few_unused_entries();
+  void scatter_combined_values();
 
   int num_dofs_;
   bool finalized_ = false;
@@ -102,6 +109,10 @@ class Problem {
   std::vector<StepFilter*> filters_;
   std::vector<Eigen::Triplet<double>> triplets_;
   SparseMatrix changing_part_, combined_;
+  bool combined_is_stale_ = true;   // a new solve: combined_'s pattern may be too large
+  std::vector<char> used_;          // few_unused_entries()' marks per entry of combined_
+  std::vector<int> hessian_slots_;  // each nonzero of hessian_: its index in combined_
+  std::vector<int> triplet_slots_;  // each of triplets_: its index in combined_
   long pattern_version_ = 0;
 };
 

@@ -1,5 +1,6 @@
 // Hot paths that must not allocate (STYLE 14): the prolongation operators' apply(), offsets()
-// and the chain rule add_jacobian_transpose(), called once per Newton iteration of a preview. A
+// and the chain rule add_jacobian_transpose(), called once per Newton iteration of a preview;
+// the contact barrier's value, gradient and assembled Hessian within one contact set. A
 // separate executable counts every malloc/calloc/realloc in the process (interposing glibc's
 // allocator, which libprogsim and Eigen reach through malloc) around the calls; sanitizer builds,
 // which own malloc, skip it.
@@ -9,6 +10,8 @@
 #include <atomic>
 #include <cstddef>
 
+#include "contact/collision_mesh.hpp"
+#include "contact/contact_potential.hpp"
 #include "energy/hinge_bending.hpp"
 #include "energy/midedge_bending.hpp"
 #include "energy/neo_hookean_membrane.hpp"
@@ -18,6 +21,8 @@
 #include "hierarchy/mesh_hierarchy.hpp"
 #include "mesh/mesh_generators.hpp"
 #include "mesh/mesh_topology.hpp"
+#include "problem/problem.hpp"
+#include "support/stacked_sheets.hpp"
 
 extern "C" {
 void* __libc_malloc(std::size_t size);
@@ -142,6 +147,49 @@ TEST(AllocationFree, MidedgeBendingValueGradientAndHessian) {
       term.hessian_values(x, false, values.data());
     });
     EXPECT_EQ(count, 0) << threads << " thread(s)";
+  }
+}
+
+TEST(AllocationFree, ContactBarrierWithinOneContactSet) {
+  // Two 3721-vertex sheets 4 mm apart (d̂ = 1 cm): every top vertex is in contact. Once the
+  // Hessian's pattern holds the contact set, a Newton iteration's value, gradient and assembled
+  // Hessian at a new x allocate nothing (the membrane keeps the sheets' Hessian non-trivial).
+  const TriangleMesh sheet = make_grid(1.0, 1.0, 60, 60);
+  const int n = sheet.num_vertices();
+  const TriangleMesh two = test_support::stacked_sheets(sheet, sheet, 0.004);
+  Problem problem(3 * 2 * n);
+  problem.add_term(std::make_unique<NeoHookeanMembrane>(
+      two.vertices, two.faces, std::vector<ShellMaterial>(two.num_faces())));
+  const ContactPotential& contact = problem.add_term(std::make_unique<ContactPotential>(
+      build_collision_mesh(two.vertices, two.faces, std::vector<double>(2 * n, 0.0),
+                           std::vector<double>(2 * n, 0.0), {}),
+      0.01, 1.0, std::nullopt));
+  problem.finalize();
+  const Vector x = as_dofs(two.vertices);
+  Vector shifted = x;
+  for (int v = n; v < 2 * n; ++v) shifted[3 * v] += 1e-5 * (v % 3);  // the same contact set
+  const Vector* const iterates[] = {&x, &shifted, &x};
+  Vector g = Vector::Zero(x.size());
+  problem.begin_solve(x);
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    for (const Vector* at : iterates) {  // warm-up: buffers and the Hessian's pattern
+      problem.value(*at);
+      problem.gradient(*at, g);
+      problem.hessian(*at, true);
+    }
+    const long version = problem.pattern_version();
+    const long count = allocations_in([&] {
+      for (const Vector* at : iterates) {
+        problem.value(*at);
+        problem.gradient(*at, g);
+        problem.hessian(*at, true);
+        problem.hessian(*at, false);
+      }
+    });
+    EXPECT_EQ(count, 0) << threads << " thread(s)";
+    EXPECT_EQ(problem.pattern_version(), version) << "the contact set was meant to stay";
+    EXPECT_GT(contact.stats().active_pairs, 2 * n) << "the sheets were meant to touch";
   }
 }
 

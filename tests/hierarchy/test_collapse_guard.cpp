@@ -16,6 +16,7 @@
 #include "mesh/mesh_io.hpp"
 #include "support/expect_error.hpp"
 #include "support/real_meshes.hpp"
+#include "support/stacked_sheets.hpp"
 
 using namespace progsim;
 using namespace progsim::test_support;
@@ -183,17 +184,12 @@ TEST(CrossingFreeLevels, OffsetsAreCheckedForSizeAndSign) {
 TEST(CrossingFreeLevels, AnUnreachableLevelIsNamedWithWhereItStopped) {
   // Two sheets 3 mm apart with 1 mm offsets each side: a 1 cm grid decimated far enough would
   // have to bend faces within 2 mm of the other sheet.
-  TriangleMesh a = make_grid(0.1, 0.1, 10, 10), b = make_grid(0.1, 0.1, 10, 10);
-  const int n = a.num_vertices();
-  TriangleMesh two;
-  two.vertices.resize(2 * n, 3);
-  two.vertices << a.vertices, b.vertices;
-  two.vertices.bottomRows(n).col(2).array() += 0.003;
-  two.faces.resize(2 * a.num_faces(), 3);
-  two.faces << a.faces, (b.faces.array() + n).matrix();
+  const TriangleMesh sheet = make_grid(0.1, 0.1, 10, 10);
+  const TriangleMesh two = test_support::stacked_sheets(sheet, sheet, 0.003);
   HierarchyOptions options;
   options.coarse_vertex_counts = {8, 60};
-  options.contact_offsets.assign(2 * n, 0.0015);  // pairs need 3 mm: the sheets touch now
+  options.contact_offsets.assign(two.num_vertices(),
+                                 0.0015);  // pairs need 3 mm: the sheets touch now
   expect_error([&] { build_hierarchy(two, options); }, Status::invalid_mesh,
                {"decimation: level ", "cannot be reached: stopped at "});
 }

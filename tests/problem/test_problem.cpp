@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
+#include "energy/changing_pattern_term.hpp"
 #include "energy/gravity.hpp"
 #include "energy/inertia.hpp"
 #include "problem/problem.hpp"
@@ -85,4 +86,110 @@ TEST(Problem, RejectsWrongMaskSizeAndLateTerms) {
   EXPECT_THROW(problem.set_fixed_dofs(std::vector<bool>(5, false)), Error);
   EXPECT_THROW(problem.add_term(std::make_unique<Gravity>(Eigen::Vector4d::Ones(), Vec3::Zero())),
                Error);
+}
+
+namespace {
+
+/// Springs between the vertex pairs switched on, a stand-in for contact: a term whose Hessian
+/// pattern changes with the set of pairs (E = Σ k/2 ‖x_a − x_b‖² over the switched-on pairs).
+class SwitchedSprings : public ChangingPatternTerm {
+ public:
+  explicit SwitchedSprings(double stiffness) : k_(stiffness) {}
+  const char* name() const override { return "switched springs"; }
+  std::vector<std::array<int, 2>> on;
+  double value(const Vector& x) const override {
+    double e = 0;
+    for (const auto& [a, b] : on)
+      e += 0.5 * k_ * (x.segment<3>(3 * a) - x.segment<3>(3 * b)).squaredNorm();
+    return e;
+  }
+  void add_gradient(const Vector& x, Vector& g) const override {
+    for (const auto& [a, b] : on) {
+      const Vec3 d = k_ * (x.segment<3>(3 * a) - x.segment<3>(3 * b));
+      g.segment<3>(3 * a) += d;
+      g.segment<3>(3 * b) -= d;
+    }
+  }
+  void append_hessian_triplets(const Vector&, bool,
+                               std::vector<Eigen::Triplet<double>>& out) const override {
+    for (const auto& [a, b] : on)
+      for (int r = 0; r < 3; ++r) {
+        out.emplace_back(3 * a + r, 3 * a + r, k_);
+        out.emplace_back(3 * b + r, 3 * b + r, k_);
+        out.emplace_back(3 * a + r, 3 * b + r, -k_);
+        out.emplace_back(3 * b + r, 3 * a + r, -k_);
+      }
+  }
+
+ private:
+  double k_;
+};
+
+/// The full symmetric matrix from the lower triangle Problem::hessian() stores.
+Eigen::MatrixXd symmetric(const Problem::SparseMatrix& lower) {
+  const Eigen::MatrixXd l(lower);
+  return l + l.transpose() - Eigen::MatrixXd(l.diagonal().asDiagonal());
+}
+
+/// k I on the diagonal blocks of a and b, −k I off them, for every pair switched on; plus the
+/// springs' 1 N/m on the chain 0–1–2–…: the Hessian written out by hand, 3 DOFs per vertex.
+Eigen::MatrixXd expected_hessian(const std::vector<std::array<int, 2>>& on, double k,
+                                 int num_vertices) {
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(3 * num_vertices, 3 * num_vertices);
+  auto add = [&](int a, int b, double s) {
+    const Eigen::Matrix3d i = s * Eigen::Matrix3d::Identity();
+    h.block<3, 3>(3 * a, 3 * a) += i;
+    h.block<3, 3>(3 * b, 3 * b) += i;
+    h.block<3, 3>(3 * a, 3 * b) -= i;
+    h.block<3, 3>(3 * b, 3 * a) -= i;
+  };
+  for (int v = 0; v + 1 < num_vertices; ++v) add(v, v + 1, 1.0);
+  for (const auto& [a, b] : on) add(a, b, k);
+  return h;
+}
+
+}  // namespace
+
+TEST(Problem, ChangingPatternKeepsItsAnalysisWhileASolveReusesEntries) {
+  constexpr int kVertices = 8;
+  Problem problem(3 * kVertices);
+  std::vector<std::array<int, 2>> chain;
+  for (int v = 0; v + 1 < kVertices; ++v) chain.push_back({v, v + 1});
+  problem.add_term(std::make_unique<SpringTerm>(chain, kVertices, 1.0));
+  SwitchedSprings& contact = problem.add_term(std::make_unique<SwitchedSprings>(5.0));
+  problem.finalize();
+  const Vector x = Vector::Random(3 * kVertices);
+  auto check = [&](const char* when) {
+    EXPECT_LT((symmetric(problem.hessian(x, false)) - expected_hessian(contact.on, 5.0, kVertices))
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-12)
+        << when;
+  };
+  problem.begin_solve(x);
+  contact.on = {{0, 5}, {2, 7}};
+  check("two pairs");
+  const long first = problem.pattern_version();
+  contact.on = {{2, 7}};
+  check("one pair gone");
+  contact.on = {{0, 5}, {2, 7}};
+  check("back again");
+  EXPECT_EQ(problem.pattern_version(), first) << "entries already held need no new analysis";
+  contact.on.clear();  // every pair of vertices not joined by the chain: 21 new blocks
+  for (int a = 0; a < kVertices; ++a)
+    for (int b = a + 2; b < kVertices; ++b) contact.on.push_back({a, b});
+  check("new pairs");
+  const long grown = problem.pattern_version();
+  EXPECT_NE(grown, first);
+
+  problem.begin_solve(x);  // the next solve still uses every entry: same pattern
+  check("next solve, same pairs");
+  EXPECT_EQ(problem.pattern_version(), grown);
+  const Eigen::Index full = problem.hessian(x, false).nonZeros();
+
+  problem.begin_solve(x);  // no contact pair left: a third of the entries unused, dropped
+  contact.on.clear();
+  check("no pairs");
+  EXPECT_NE(problem.pattern_version(), grown);
+  EXPECT_LT(problem.hessian(x, false).nonZeros(), full);
 }
