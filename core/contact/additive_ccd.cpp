@@ -99,8 +99,10 @@ double plane_distance_bound(const SpanningVectors& v, double t_max) {
 /// the rate at which the distance can shrink. A motion that would take more than
 /// kCertifiedAdvances steps is first tried against plane_distance_bound().
 /// `raw` is dx before centring (plane_distance_bound() takes differences, which need none).
+/// Past t_stop ≤ t_max the advancement returns t_stop (the caller needs no larger t).
 double advance(const Vec12& x, const Vec12& dx, const Vec12& raw, double l_p, Classifier classify,
-               bool point_triangle, double thickness, double s, double t_max, int max_iterations) {
+               bool point_triangle, double thickness, double s, double t_max, double t_stop,
+               int max_iterations) {
   constexpr double kCertifiedAdvances = 16.0;
   const double g0 = gap(x, classify, thickness);
   if (!std::isfinite(g0) || !std::isfinite(l_p))  // finite input that overflows
@@ -119,7 +121,7 @@ double advance(const Vec12& x, const Vec12& dx, const Vec12& raw, double l_p, Cl
     const double g = gap(xt, classify, thickness);
     if ((t > 0.0 && g < g_min) || g <= 0.0) return t;  // g ≤ 0 only by rounding
     t += t_l;
-    if (t > t_max) return t_max;
+    if (t > t_stop) return t_stop;
     t_l = 0.9 * g / l_p;  // later steps keep ≥ 10% of the current gap
   }
   return t;
@@ -128,21 +130,27 @@ double advance(const Vec12& x, const Vec12& dx, const Vec12& raw, double l_p, Cl
 }  // namespace
 
 double additive_ccd_point_triangle(const Vec12& x, const Vec12& dx, double thickness, double s,
-                                   double t_max, int max_iterations) {
+                                   double t_max, int max_iterations, double stop_at) {
   if (!x.allFinite() || !dx.allFinite()) return std::numeric_limits<double>::quiet_NaN();
   const Vec12 d = centered(dx);
   // l_p = ‖dp‖ + max_k ‖dt_k‖ bounds how fast the distance can shrink (C-IPC Alg. 1)
   const double l_p = d.segment<3>(0).norm() + max_norm(d, 1, 4);
-  return advance(x, d, dx, l_p, classify_point_triangle, true, thickness, s, t_max, max_iterations);
+  const double t_stop = std::min(t_max, stop_at);
+  return std::min(advance(x, d, dx, l_p, classify_point_triangle, true, thickness, s, t_max, t_stop,
+                          max_iterations),
+                  stop_at);
 }
 
 double additive_ccd_edge_edge(const Vec12& x, const Vec12& dx, double thickness, double s,
-                              double t_max, int max_iterations) {
+                              double t_max, int max_iterations, double stop_at) {
   if (!x.allFinite() || !dx.allFinite()) return std::numeric_limits<double>::quiet_NaN();
   const Vec12 d = centered(dx);
   // l_p = max(‖da0‖, ‖da1‖) + max(‖db0‖, ‖db1‖) (C-IPC Alg. 1)
   const double l_p = max_norm(d, 0, 2) + max_norm(d, 2, 4);
-  return advance(x, d, dx, l_p, classify_edge_edge, false, thickness, s, t_max, max_iterations);
+  const double t_stop = std::min(t_max, stop_at);
+  return std::min(advance(x, d, dx, l_p, classify_edge_edge, false, thickness, s, t_max, t_stop,
+                          max_iterations),
+                  stop_at);
 }
 
 }  // namespace progsim

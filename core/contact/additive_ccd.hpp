@@ -2,6 +2,8 @@
 /// @file Additive continuous collision detection (ACCD; C-IPC, Li, Kaufman & Jiang 2021,
 /// Alg. 1): a conservative time of impact for linear trajectories of a point–triangle or
 /// edge–edge stencil that keeps the pair at least a thickness ξ apart.
+#include <limits>
+
 #include "contact/primitive_distance.hpp"
 
 namespace progsim {
@@ -30,11 +32,16 @@ inline constexpr int kAccdMaxIterations = 1000000;
 ///        uses 0.1)
 /// @param t_max upper bound on t (usually 1)
 /// @param max_iterations cap on the advancement's iterations
+/// @param stop_at no t above this is needed (e.g. the smallest step found so far among other
+///        pairs): the advancement ends there. The result is exactly min(the result without
+///        stop_at, stop_at), so a running minimum gives the same overall minimum in any order.
 double additive_ccd_point_triangle(const Vec12& x, const Vec12& dx, double thickness, double s,
-                                   double t_max, int max_iterations = kAccdMaxIterations);
+                                   double t_max, int max_iterations = kAccdMaxIterations,
+                                   double stop_at = std::numeric_limits<double>::infinity());
 
 /// As additive_ccd_point_triangle() for an edge–edge stencil (ea0, ea1, eb0, eb1).
 double additive_ccd_edge_edge(const Vec12& x, const Vec12& dx, double thickness, double s,
-                              double t_max, int max_iterations = kAccdMaxIterations);
+                              double t_max, int max_iterations = kAccdMaxIterations,
+                              double stop_at = std::numeric_limits<double>::infinity());
 
 }  // namespace progsim

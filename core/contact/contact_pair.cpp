@@ -48,18 +48,19 @@ double pair_distance_squared(const ContactPair& pair, const Vec12& xs, const Gro
 }
 
 double pair_safe_step(const ContactPair& pair, const Vec12& xs, const Vec12& dx, double offset,
-                      double s, const GroundPlane* ground, int max_iterations) {
+                      double s, const GroundPlane* ground, int max_iterations, double stop_at) {
   if (!xs.allFinite() || !dx.allFinite()) return std::numeric_limits<double>::quiet_NaN();
   switch (pair.kind) {
     case ContactPair::Kind::ground: {
       const double approach = -ground->normal.dot(dx.head<3>());
       const double gap = ground->normal.dot(xs.head<3>()) - ground->height - offset;
-      return approach > 0.0 ? std::clamp((1.0 - s) * gap / approach, 0.0, 1.0) : 1.0;
+      return std::min(approach > 0.0 ? std::clamp((1.0 - s) * gap / approach, 0.0, 1.0) : 1.0,
+                      stop_at);
     }
     case ContactPair::Kind::vertex_face:
-      return additive_ccd_point_triangle(xs, dx, offset, s, 1.0, max_iterations);
+      return additive_ccd_point_triangle(xs, dx, offset, s, 1.0, max_iterations, stop_at);
     case ContactPair::Kind::edge_edge:
-      return additive_ccd_edge_edge(xs, dx, offset, s, 1.0, max_iterations);
+      return additive_ccd_edge_edge(xs, dx, offset, s, 1.0, max_iterations, stop_at);
   }
   return 0.0;
 }

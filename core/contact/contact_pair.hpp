@@ -3,6 +3,7 @@
 /// mesh: its stencil, its offset, its distance, and the conservative step that keeps it apart
 /// along a linear motion (IPC, Li et al. 2020, §4; additive CCD of C-IPC, Li et al. 2021, Alg. 1).
 #include <array>
+#include <limits>
 
 #include "contact/additive_ccd.hpp"
 #include "contact/broad_phase.hpp"
@@ -43,8 +44,10 @@ double pair_distance_squared(const ContactPair& pair, const Vec12& xs, const Gro
 /// Largest safe step t ∈ [0, 1] of the pair along xs + t·dx that keeps its distance above
 /// `offset` and, when t < 1, at least offset + s·(d − offset) (additive CCD, C-IPC Alg. 1;
 /// for the ground in closed form). `ground` is needed for ground pairs only; `max_iterations`
-/// caps the additive CCD's iterations (see additive_ccd_point_triangle()).
+/// caps the additive CCD's iterations; the result is min(t, stop_at) (see
+/// additive_ccd_point_triangle()).
 double pair_safe_step(const ContactPair& pair, const Vec12& xs, const Vec12& dx, double offset,
-                      double s, const GroundPlane* ground, int max_iterations = kAccdMaxIterations);
+                      double s, const GroundPlane* ground, int max_iterations = kAccdMaxIterations,
+                      double stop_at = std::numeric_limits<double>::infinity());
 
 }  // namespace progsim

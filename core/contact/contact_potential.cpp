@@ -1,7 +1,9 @@
 #include "contact/contact_potential.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 #include <tuple>
 
@@ -22,6 +24,13 @@ constexpr double kCcdRescaling = 0.1;
 constexpr double kSmallGapFraction = 0.01;
 /// Cap on the adaptive growth of κ.
 constexpr double kMaxStiffnessGrowth = 1e8;
+
+/// found = min(found, t) for a shared running minimum (a NaN t leaves it unchanged).
+void lower_to(std::atomic<double>& found, double t) {
+  double current = found.load(std::memory_order_relaxed);
+  while (t < current && !found.compare_exchange_weak(current, t, std::memory_order_relaxed)) {
+  }
+}
 
 /// ∇ of a point's squared distance to the ground, (n·x − h)²: 2(n·x − h) n on the point (12).
 Vec12 ground_distance_squared_gradient(const GroundPlane& ground, const Vec12& xs) {
@@ -166,23 +175,30 @@ void ContactPotential::measure_distances(const Positions& positions) const {
 
 const std::vector<int>& ContactPotential::active_items(const Positions& positions) const {
   measure_distances(positions);
-  active_.clear();
-  for (int k = 0; k < static_cast<int>(distances_squared_.size()); ++k) {
+  const int n = static_cast<int>(distances_squared_.size());
+  is_active_.resize(n);
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n))
+  for (int k = 0; k < n; ++k) {
     const double offset = pair(k).offset;
-    if (barrier_argument(distances_squared_[k], offset) < barrier_activation(offset, dhat_))
-      active_.push_back(k);
+    is_active_[k] =
+        barrier_argument(distances_squared_[k], offset) < barrier_activation(offset, dhat_);
   }
+  active_.clear();
+  for (int k = 0; k < n; ++k)
+    if (is_active_[k]) active_.push_back(k);
   return active_;
 }
 
 /// An active item that evaluates a vertex–vertex or vertex–edge barrier, keyed by it.
 struct ContactPotential::KeyedItem {
-  std::array<int, 4> key;  ///< distance type, the point, the other feature's sorted vertices
+  /// distance type, the point, the other feature's sorted vertices; type −1: shares nothing
+  std::array<int, 4> key;
   double offset;
-  int item;
+  int index;  ///< into active_ (ascending in item)
   bool operator<(const KeyedItem& o) const {
-    return std::tie(key, offset, item) < std::tie(o.key, o.offset, o.item);
+    return std::tie(key, offset, index) < std::tie(o.key, o.offset, o.index);
   }
+  bool same_barrier(const KeyedItem& o) const { return key == o.key && offset == o.offset; }
 };
 
 bool ContactPotential::evaluates_a_vertex_barrier(const Pair& p, const ClosestPair& c,
@@ -195,37 +211,61 @@ bool ContactPotential::evaluates_a_vertex_barrier(const Pair& p, const ClosestPa
          mollifier(stencil_positions(p.vertices, positions), mollifier_threshold_of(p)) == 1.0;
 }
 
+ContactPotential::KeyedItem ContactPotential::keyed_item(int index,
+                                                         const Positions& positions) const {
+  const int k = active_[index];
+  const Pair p = pair(k);
+  const ClosestPair& c = closest_[k];
+  if (!evaluates_a_vertex_barrier(p, c, positions)) return {{-1, -1, -1, -1}, p.offset, index};
+  const int point = p.vertices[c.vertices[0]], other = p.vertices[c.vertices[1]];
+  if (c.type == DistanceType::point_point)  // symmetric in its two vertices
+    return {{0, std::min(point, other), std::max(point, other), -1}, p.offset, index};
+  const int third = p.vertices[c.vertices[2]];
+  return {{1, point, std::min(other, third), std::max(other, third)}, p.offset, index};
+}
+
 const std::vector<ContactPotential::ActiveGroup>& ContactPotential::active_groups(
     const Positions& positions) const {
-  std::vector<KeyedItem>& keyed = keyed_;  // reused: no allocation once grown
-  keyed.clear();
+  const int n = static_cast<int>(active_items(positions).size());
+  keyed_.resize(n);  // reused buffers: no allocation once grown
+  group_counts_.assign(n, 1);
+#pragma omp parallel for schedule(static) num_threads(loop_threads(n))
+  for (int i = 0; i < n; ++i) keyed_[i] = keyed_item(i, positions);
+  bucket_by_first_vertex();
+  const int num_buckets = static_cast<int>(bucket_offsets_.size()) - 1;
+#pragma omp parallel for schedule(dynamic, 256) num_threads(loop_threads(num_buckets))
+  for (int b = 0; b < num_buckets; ++b)
+    count_bucket_groups(bucketed_.data() + bucket_offsets_[b],
+                        bucketed_.data() + bucket_offsets_[b + 1]);
   groups_.clear();
-  for (int k : active_items(positions)) {
-    const Pair p = pair(k);
-    const ClosestPair& c = closest_[k];
-    if (!evaluates_a_vertex_barrier(p, c, positions)) {
-      groups_.push_back({k, 1});
-      continue;
-    }
-    const int point = p.vertices[c.vertices[0]], other = p.vertices[c.vertices[1]];
-    const std::array<int, 4> key =
-        c.type == DistanceType::point_point  // symmetric in its two vertices
-            ? std::array<int, 4>{0, std::min(point, other), std::max(point, other), -1}
-            : std::array<int, 4>{1, point, std::min(other, p.vertices[c.vertices[2]]),
-                                 std::max(other, p.vertices[c.vertices[2]])};
-    keyed.push_back({key, p.offset, k});
-  }
-  std::sort(keyed.begin(), keyed.end());
-  for (std::size_t i = 0; i < keyed.size();) {
-    std::size_t j = i + 1;
-    while (j < keyed.size() && keyed[j].key == keyed[i].key && keyed[j].offset == keyed[i].offset)
-      ++j;
-    groups_.push_back({keyed[i].item, static_cast<int>(j - i)});
-    i = j;
-  }
-  std::sort(groups_.begin(), groups_.end(),
-            [](const ActiveGroup& l, const ActiveGroup& r) { return l.item < r.item; });
+  for (int i = 0; i < n; ++i)
+    if (group_counts_[i] > 0) groups_.push_back({active_[i], group_counts_[i]});
   return groups_;
+}
+
+/// bucketed_ = the keyed items that may share a barrier, by their key's first vertex (a
+/// counting sort: bucket_offsets_ delimits each vertex's items).
+void ContactPotential::bucket_by_first_vertex() const {
+  bucket_offsets_.assign(mesh_.num_vertices() + 1, 0);
+  for (const KeyedItem& item : keyed_)
+    if (item.key[0] >= 0) ++bucket_offsets_[item.key[1] + 1];
+  std::partial_sum(bucket_offsets_.begin(), bucket_offsets_.end(), bucket_offsets_.begin());
+  bucketed_.resize(bucket_offsets_.back());
+  bucket_cursor_.assign(bucket_offsets_.begin(), bucket_offsets_.end() - 1);
+  for (const KeyedItem& item : keyed_)
+    if (item.key[0] >= 0) bucketed_[bucket_cursor_[item.key[1]]++] = item;
+}
+
+/// Sorts one bucket and weights the first item of each same-barrier run by the run's length;
+/// the others get weight 0 (they are not evaluated).
+void ContactPotential::count_bucket_groups(KeyedItem* begin, KeyedItem* end) const {
+  std::sort(begin, end);
+  for (auto run = begin; run != end;) {
+    auto next = run + 1;
+    while (next != end && next->same_barrier(*run)) group_counts_[(next++)->index] = 0;
+    group_counts_[run->index] = static_cast<int>(next - run);
+    run = next;
+  }
 }
 
 void ContactPotential::add_gradient(const Vector& x, Vector& g) const {
@@ -334,16 +374,20 @@ double ContactPotential::ccd(const Positions& p0, const Positions& p1) {
   stats_.ccd_calls += n;
   double alpha = 1.0;
   int non_finite = 0;  // std::min would drop a NaN bound and admit the whole step
+  // The smallest step found so far: no pair needs to advance past it. Each pair returns exactly
+  // min(its step, the bound it read), so α is the same in any order and on any thread count.
+  std::atomic<double> found{1.0};
 #pragma omp parallel for reduction(min : alpha) reduction(+ : non_finite) schedule(dynamic, 64) \
     num_threads(loop_threads(n, kMinParallelItems / 16))
   for (int k = 0; k < n; ++k) {
     const Pair p = pair(k);
     const Vec12 xs = stencil_positions(p.vertices, p0);
     const Vec12 dx = stencil_positions(p.vertices, p1) - xs;
-    const double t =
-        pair_safe_step(p, xs, dx, p.offset, kCcdRescaling, ground(), ccd_max_iterations_);
+    const double t = pair_safe_step(p, xs, dx, p.offset, kCcdRescaling, ground(),
+                                    ccd_max_iterations_, found.load(std::memory_order_relaxed));
     if (std::isnan(t)) ++non_finite;
     alpha = std::min(alpha, t);
+    lower_to(found, t);
   }
   return non_finite > 0 ? std::numeric_limits<double>::quiet_NaN() : alpha;
 }

@@ -148,6 +148,11 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   /// edges). Each group is evaluated once and weighted by its count, as IPC Toolkit weights
   /// duplicate collisions; the energy is the same. Ordered by item (a reused buffer).
   const std::vector<ActiveGroup>& active_groups(const Positions& positions) const;
+  struct KeyedItem;
+  /// active_[index] keyed by the barrier it evaluates (at measure_distances()' closest pair).
+  KeyedItem keyed_item(int index, const Positions& positions) const;
+  void bucket_by_first_vertex() const;
+  void count_bucket_groups(KeyedItem* begin, KeyedItem* end) const;
   struct LocalHessian;
   LocalHessian restricted_hessian(const Pair& p, const Mat12& h, bool project) const;
   /// Positions of every collision vertex: shell from x, obstacles from obstacle_positions_.
@@ -183,10 +188,13 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   mutable std::vector<int> active_;
   mutable std::vector<ClosestPair> closest_;  ///< per item, by measure_distances()
   mutable Positions measured_at_;             ///< the positions of the last measure_distances()
-  mutable bool measured_ = false;  ///< distances_squared_ and closest_ hold at measured_at_
+  mutable bool measured_ = false;        ///< distances_squared_ and closest_ hold at measured_at_
+  mutable std::vector<char> is_active_;  ///< per item, by active_items()
   mutable std::vector<ActiveGroup> groups_;
-  struct KeyedItem;
-  mutable std::vector<KeyedItem> keyed_;  ///< active_groups()' sort buffer
+  // active_groups()' buffers: keyed active items, those that may share a barrier bucketed by
+  // first vertex, and each active item's weight (0: counted by another).
+  mutable std::vector<KeyedItem> keyed_, bucketed_;
+  mutable std::vector<int> bucket_offsets_, bucket_cursor_, group_counts_;
   mutable std::vector<Vec12> gradients_;
   mutable std::vector<LocalHessian> hessians_;
   Vector moved_;

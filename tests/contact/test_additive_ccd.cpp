@@ -108,6 +108,33 @@ TEST(AdditiveCcd, RandomTrajectoriesNeverGetCloserThanThickness) {
   EXPECT_GT(free, 1000);
 }
 
+TEST(AdditiveCcd, StoppingAtAKnownBoundGivesExactlyTheMinimumOfBoth) {
+  // A caller with a running minimum over pairs passes it as stop_at; the overall minimum must
+  // not depend on the order the pairs ran in, so each result is exactly min(t, stop_at).
+  Random rng(11);
+  int cut = 0, kept = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const bool triangle = i % 2 == 0;
+    const Vec12 x =
+        triangle ? random_point_triangle(rng, (i / 2) % 5) : random_edge_edge(rng, (i / 2) % 7);
+    Vec12 dx;
+    for (int k = 0; k < 4; ++k) dx.segment<3>(3 * k) = rng.vec(i % 3 == 0 ? 20.0 : 1.5);
+    if (i % 4 < 2) aim_first_primitive(x, triangle, dx);
+    const double xi = std::array<double, 3>{0.0, 1e-3, 1e-2}[rng.index(3)];
+    if (reference_distance(x, triangle) < xi + 1e-6) continue;
+    const double t = ccd(x, dx, triangle, xi);
+    for (double stop_at : {0.0, 0.25 * t, 0.5, 0.999 * t, t, 0.9, 1.0, 2.0}) {
+      const double bounded =
+          triangle ? additive_ccd_point_triangle(x, dx, xi, kS, 1.0, kAccdMaxIterations, stop_at)
+                   : additive_ccd_edge_edge(x, dx, xi, kS, 1.0, kAccdMaxIterations, stop_at);
+      ASSERT_EQ(bounded, std::min(t, stop_at)) << "i = " << i << ", stop_at = " << stop_at;
+      (stop_at < t ? cut : kept) += 1;
+    }
+  }
+  EXPECT_GT(cut, 4000);
+  EXPECT_GT(kept, 4000);
+}
+
 TEST(AdditiveCcd, ReturnsBeforeTheSampledTimeOfImpact) {
   // The returned t never passes the first sampled time the pair comes within ξ.
   Random rng(7);
