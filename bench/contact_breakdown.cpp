@@ -20,13 +20,18 @@ namespace {
 
 /// Seconds of one step by phase.
 struct Split {
-  double total = 0, broad_phase = 0, ccd = 0, barrier = 0, friction = 0, factorization = 0;
-  int iterations = 0;
+  double total = 0, broad_phase = 0, ccd = 0, barrier = 0, friction = 0, analysis = 0,
+         factorization = 0;
+  int iterations = 0, symbolic_analyses = 0;
   long active_pairs = 0, candidates = 0;
-  double other() const { return total - broad_phase - ccd - barrier - friction - factorization; }
+  double other() const {
+    return total - broad_phase - ccd - barrier - friction - analysis - factorization;
+  }
   void add(const Split& s) {
     total += s.total, broad_phase += s.broad_phase, ccd += s.ccd, barrier += s.barrier;
-    friction += s.friction, factorization += s.factorization, iterations += s.iterations;
+    friction += s.friction, analysis += s.analysis, factorization += s.factorization;
+    iterations += s.iterations;
+    symbolic_analyses += s.symbolic_analyses;
     active_pairs += s.active_pairs, candidates += s.candidates;
   }
 };
@@ -34,8 +39,10 @@ struct Split {
 Split split_of(const StepRecord& r) {
   Split s;
   s.total = r.seconds;
+  s.analysis = r.newton.timings.analysis;
   s.factorization = r.newton.timings.factorization;
   s.iterations = r.newton.iterations;
+  s.symbolic_analyses = r.newton.symbolic_analyses;
   if (r.contact) {
     s.broad_phase = r.contact->broad_phase_seconds;
     s.ccd = r.contact->ccd_seconds;
@@ -49,9 +56,9 @@ Split split_of(const StepRecord& r) {
 }
 
 void print_row(std::FILE* out, const char* label, const Split& s) {
-  std::fprintf(out, "%-22s %9.3f %7d %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f\n", label, s.total,
-               s.iterations, s.broad_phase, s.ccd, s.barrier, s.friction, s.factorization,
-               s.other());
+  std::fprintf(out, "%-22s %9.3f %7d %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f\n", label, s.total,
+               s.iterations, s.broad_phase, s.ccd, s.barrier, s.friction, s.analysis,
+               s.factorization, s.other());
 }
 
 int run(int argc, char** argv) {
@@ -86,8 +93,8 @@ int run(int argc, char** argv) {
   for (int s = first_touch; s < steps; ++s) touching.add(per_step[s]);
   for (const Split& s : per_step) all.add(s);
 
-  std::printf("\n%-22s %9s %7s %9s %9s %9s %9s %9s %9s\n", "phase (seconds)", "total", "newton",
-              "broad", "ccd", "barrier", "friction", "factor", "other");
+  std::printf("\n%-22s %9s %7s %9s %9s %9s %9s %9s %9s %9s\n", "phase (seconds)", "total", "newton",
+              "broad", "ccd", "barrier", "friction", "analysis", "factor", "other");
   print_row(stdout, "falling, no contact", free_fall);
   print_row(stdout, "falling, contact on", falling_with_contact);
   print_row(stdout, "touching", touching);
@@ -100,15 +107,23 @@ int run(int argc, char** argv) {
       "over all steps: contact work (broad + ccd + barrier + friction) = %.1f%% of the "
       "time, factorization = %.1f%%\n",
       100.0 * contact_share, 100.0 * all.factorization / all.total);
+  const double touching_contact =
+      touching.broad_phase + touching.ccd + touching.barrier + touching.friction;
+  std::printf(
+      "while touching: contact work / factorization = %.2f; %d symbolic analyses in %d steps "
+      "(%d Newton iterations)\n",
+      touching.factorization > 0 ? touching_contact / touching.factorization : 0.0,
+      touching.symbolic_analyses, steps - first_touch, touching.iterations);
 
   std::ofstream csv = bench::open_csv(csv_path);
-  csv << "step,seconds,newton_iterations,broad_phase,ccd,barrier,friction,factorization,"
-         "other,candidate_pairs,active_pairs\n";
+  csv << "step,seconds,newton_iterations,broad_phase,ccd,barrier,friction,analysis,factorization,"
+         "other,candidate_pairs,active_pairs,symbolic_analyses\n";
   for (std::size_t s = 0; s < per_step.size(); ++s) {
     const Split& p = per_step[s];
     csv << s + 1 << ',' << p.total << ',' << p.iterations << ',' << p.broad_phase << ',' << p.ccd
-        << ',' << p.barrier << ',' << p.friction << ',' << p.factorization << ',' << p.other()
-        << ',' << p.candidates << ',' << p.active_pairs << '\n';
+        << ',' << p.barrier << ',' << p.friction << ',' << p.analysis << ',' << p.factorization
+        << ',' << p.other() << ',' << p.candidates << ',' << p.active_pairs << ','
+        << p.symbolic_analyses << '\n';
   }
   csv << "# falling_steps=" << first_touch << " contact_on_over_off_while_falling=" << overhead
       << '\n';

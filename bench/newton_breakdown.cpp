@@ -46,10 +46,7 @@ Row measure(int n, int threads, int steps) {
   for (int s = 0; s < steps; ++s) {
     const StepRecord r = sim.step();
     row.iterations += r.newton.iterations;
-    row.per_iteration.assembly += r.newton.timings.assembly;
-    row.per_iteration.factorization += r.newton.timings.factorization;
-    row.per_iteration.solve += r.newton.timings.solve;
-    row.per_iteration.line_search += r.newton.timings.line_search;
+    row.per_iteration += r.newton.timings;
     row.step_seconds += r.seconds;
   }
   const double k = std::max(1, row.iterations);

@@ -54,10 +54,7 @@ void accumulate(NewtonReport& total, const NewtonReport& part) {
   sum.capped_steps += total.capped_steps;
   sum.symbolic_analyses += total.symbolic_analyses;
   sum.max_shift = std::max(total.max_shift, part.max_shift);
-  sum.timings.assembly += total.timings.assembly;
-  sum.timings.factorization += total.timings.factorization;
-  sum.timings.solve += total.timings.solve;
-  sum.timings.line_search += total.timings.line_search;
+  sum.timings += total.timings;
   total = sum;
 }
 

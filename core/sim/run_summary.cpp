@@ -14,10 +14,7 @@ void RunSummary::add(const StepRecord& r) {
   seconds_ += r.seconds;
   final_energy_ = r.newton.energy;
   final_gradient_norm_ = r.newton.gradient_norm;
-  phases_.assembly += r.newton.timings.assembly;
-  phases_.factorization += r.newton.timings.factorization;
-  phases_.solve += r.newton.timings.solve;
-  phases_.line_search += r.newton.timings.line_search;
+  phases_ += r.newton.timings;
   ++stops_[stop_name(r.newton.stop)];
   final_reactions_ = r.reactions;
 }
@@ -45,6 +42,7 @@ std::string RunSummary::to_json(const LevelSimulation& sim) const {
                       {"final_gradient_norm", final_gradient_norm_},
                       {"phase_seconds",
                        {{"assembly", phases_.assembly},
+                        {"analysis", phases_.analysis},
                         {"factorization", phases_.factorization},
                         {"solve", phases_.solve},
                         {"line_search", phases_.line_search}}},
@@ -68,8 +66,10 @@ std::string RunSummary::to_text(const LevelSimulation& sim) const {
     out += line;
   }
   std::snprintf(line, sizeof line,
-                "phases: assembly %.3f s, factorization %.3f s, solve %.3f s, line search %.3f s\n",
-                phases_.assembly, phases_.factorization, phases_.solve, phases_.line_search);
+                "phases: assembly %.3f s, analysis %.3f s, factorization %.3f s, solve %.3f s, "
+                "line search %.3f s\n",
+                phases_.assembly, phases_.analysis, phases_.factorization, phases_.solve,
+                phases_.line_search);
   out += line;
   out += "term              value  gradient  hessian   seconds\n";
   for (const TermStats& t : sim.term_totals()) {

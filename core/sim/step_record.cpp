@@ -29,6 +29,7 @@ std::string to_json_line(const StepRecord& r) {
                          {"symbolic_analyses", n.symbolic_analyses},
                          {"phase_seconds",
                           {{"assembly", n.timings.assembly},
+                           {"analysis", n.timings.analysis},
                            {"factorization", n.timings.factorization},
                            {"solve", n.timings.solve},
                            {"line_search", n.timings.line_search}}},

@@ -143,6 +143,7 @@ bool NewtonSolver::capped_line_search(Problem& problem, const Vector& x, double 
 void NewtonSolver::analyze_if_needed(const Problem& problem, const Problem::SparseMatrix& h,
                                      NewtonReport& report) {
   if (analyzed_for_ == &problem && analyzed_version_ == problem.pattern_version()) return;
+  ScopedTimer timer(report.timings.analysis);
   cholesky_.analyze(h);
   ++report.symbolic_analyses;
   analyzed_for_ = &problem;
@@ -161,8 +162,8 @@ bool NewtonSolver::factorize_hessian(Problem& problem, const Vector& x,
     {
       ScopedTimer timer(time.assembly);
       exact = &problem.hessian(x, false);
-      analyze_if_needed(problem, *exact, report);
     }
+    analyze_if_needed(problem, *exact, report);
     if (try_exact) {
       ScopedTimer timer(time.factorization);
       if (cholesky_.factorize(*exact, projection == HessianProjection::never)) {
@@ -181,8 +182,8 @@ bool NewtonSolver::factorize_hessian(Problem& problem, const Vector& x,
   {
     ScopedTimer timer(time.assembly);
     projected = &problem.hessian(x, true);
-    analyze_if_needed(problem, *projected, report);
   }
+  analyze_if_needed(problem, *projected, report);
   ScopedTimer timer(time.factorization);
   if (!cholesky_.factorize(*projected)) return false;
   report.max_shift = std::max(report.max_shift, cholesky_.shift());

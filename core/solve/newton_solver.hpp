@@ -80,9 +80,15 @@ const char* stop_name(NewtonStop stop);
 /// Seconds spent in each phase of a solve.
 struct NewtonTimings {
   double assembly = 0.0;       ///< gradient + Hessian evaluation and reduction
+  double analysis = 0.0;       ///< CHOLMOD symbolic analyses (one per new Hessian pattern)
   double factorization = 0.0;  ///< CHOLMOD numeric factorization (with retries)
   double solve = 0.0;          ///< triangular solves
   double line_search = 0.0;    ///< energy evaluations while backtracking
+  NewtonTimings& operator+=(const NewtonTimings& o) {
+    assembly += o.assembly, analysis += o.analysis, factorization += o.factorization;
+    solve += o.solve, line_search += o.line_search;
+    return *this;
+  }
 };
 
 /// Outcome of a Newton solve.
