@@ -34,7 +34,9 @@ inline constexpr int kAccdMaxIterations = 1000000;
 /// @param max_iterations cap on the advancement's iterations
 /// @param stop_at no t above this is needed (e.g. the smallest step found so far among other
 ///        pairs): the advancement ends there. The result is exactly min(the result without
-///        stop_at, stop_at), so a running minimum gives the same overall minimum in any order.
+///        stop_at, stop_at), so a running minimum gives the same overall minimum in any order
+///        (for motions whose gaps stay finite: one that overflows mid-way may give NaN unstopped
+///        and stop_at stopped).
 double additive_ccd_point_triangle(const Vec12& x, const Vec12& dx, double thickness, double s,
                                    double t_max, int max_iterations = kAccdMaxIterations,
                                    double stop_at = std::numeric_limits<double>::infinity());

@@ -121,6 +121,7 @@ void Problem::build_hessian_pattern() {
   std::copy(inner.begin(), inner.end(), hessian_.innerIndexPtr());
   std::fill(hessian_.valuePtr(), hessian_.valuePtr() + inner.size(), 0.0);
   combined_ = SparseMatrix();  // hessian_slots_ referred to the old pattern
+  combined_is_built_ = false;
 }
 
 double Problem::value(const Vector& x) {
@@ -196,7 +197,7 @@ const Problem::SparseMatrix& Problem::add_changing_pattern_terms(const Vector& x
 }
 
 bool Problem::locate_triplets_in_combined() {
-  if (combined_.cols() != num_free()) return false;  // none since finalize()
+  if (!combined_is_built_) return false;  // none since finalize()
   const int n = static_cast<int>(triplets_.size());
   triplet_slots_.resize(n);
   int missing = 0;
@@ -211,7 +212,7 @@ bool Problem::locate_triplets_in_combined() {
 /// combined_'s pattern becomes hessian_'s, the entries kept in this solve (unless stale) and
 /// the triplets'; a pattern that differs from the previous one gets a new version.
 void Problem::grow_combined_pattern() {
-  const bool restart = combined_is_stale_ || combined_.cols() != num_free();
+  const bool restart = combined_is_stale_ || !combined_is_built_;
   const SparseMatrix& base = restart ? hessian_ : combined_;
   changing_part_.resize(num_free(), num_free());
   changing_part_.setFromTriplets(triplets_.begin(), triplets_.end());
@@ -226,6 +227,7 @@ void Problem::grow_combined_pattern() {
   if (!same_pattern) pattern_version_ = next_pattern_version();
   combined_ = std::move(grown);
   combined_is_stale_ = false;
+  combined_is_built_ = true;
   const int nnz = static_cast<int>(hessian_.nonZeros());
   hessian_slots_.resize(nnz);
   for (int c = 0; c < hessian_.cols(); ++c)

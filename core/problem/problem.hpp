@@ -65,7 +65,8 @@ class Problem {
   /// Forwards to every StepFilter term (see step_filter.hpp); without any: nothing, α = 1.
   /// The Hessian pattern with terms of changing pattern keeps every entry it has held (explicit
   /// zeros), so a contact set that comes and goes keeps the symbolic analysis; a new solve
-  /// restarts it from the present entries once more than a quarter of it goes unused.
+  /// restarts it from the present entries when they do not fit in it or more than a quarter
+  /// of it goes unused.
   void begin_solve(const Vector& x);
   double max_step(const Vector& x, const Vector& p);
   bool end_iteration(const Vector& x);
@@ -110,6 +111,7 @@ class Problem {
   std::vector<Eigen::Triplet<double>> triplets_;
   SparseMatrix changing_part_, combined_;
   bool combined_is_stale_ = true;   // a new solve: combined_'s pattern may be too large
+  bool combined_is_built_ = false;  // combined_ and the slots belong to the present hessian_
   std::vector<char> used_;          // few_unused_entries()' marks per entry of combined_
   std::vector<int> hessian_slots_;  // each nonzero of hessian_: its index in combined_
   std::vector<int> triplet_slots_;  // each of triplets_: its index in combined_

@@ -193,3 +193,24 @@ TEST(Problem, ChangingPatternKeepsItsAnalysisWhileASolveReusesEntries) {
   EXPECT_NE(problem.pattern_version(), grown);
   EXPECT_LT(problem.hessian(x, false).nonZeros(), full);
 }
+
+TEST(Problem, ChangingPatternAfterEveryDofIsFixedHasAnEmptyHessian) {
+  // finalize() again (every DOF now fixed) must forget the slots of the earlier pattern.
+  Problem problem(3 * 4);
+  SwitchedSprings& contact = problem.add_term(std::make_unique<SwitchedSprings>(5.0));
+  problem.finalize();
+  const Vector x = Vector::Random(12);
+  contact.on = {{0, 2}, {1, 3}};
+  problem.begin_solve(x);
+  EXPECT_EQ(problem.hessian(x, false).nonZeros(), 12 + 6);  // diagonal + two off blocks
+  problem.set_fixed_dofs(std::vector<bool>(12, true));
+  problem.begin_solve(x);
+  EXPECT_EQ(problem.hessian(x, false).rows(), 0);
+  problem.set_fixed_dofs(std::vector<bool>(12, false));
+  problem.begin_solve(x);
+  EXPECT_LT((symmetric(problem.hessian(x, false)) - expected_hessian(contact.on, 5.0, 4) +
+             expected_hessian({}, 0.0, 4))
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-12);
+}
