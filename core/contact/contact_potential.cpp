@@ -227,17 +227,20 @@ ContactPotential::KeyedItem ContactPotential::keyed_item(int index,
 const std::vector<ContactPotential::ActiveGroup>& ContactPotential::active_groups(
     const Positions& positions) const {
   const int n = static_cast<int>(active_items(positions).size());
-  keyed_.resize(n);  // reused buffers: no allocation once grown
+  groups_.clear();
+  if (n == 0) return groups_;  // nothing in contact: no pass over the vertices
+  keyed_.resize(n);            // reused buffers: no allocation once grown
   group_counts_.assign(n, 1);
 #pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (int i = 0; i < n; ++i) keyed_[i] = keyed_item(i, positions);
   bucket_by_first_vertex();
   const int num_buckets = static_cast<int>(bucket_offsets_.size()) - 1;
-#pragma omp parallel for schedule(dynamic, 256) num_threads(loop_threads(num_buckets))
+  // The work is in the bucketed items' sorts; empty buckets cost a comparison each.
+  const int sorted_items = static_cast<int>(bucketed_.size());
+#pragma omp parallel for schedule(dynamic, 256) num_threads(loop_threads(sorted_items))
   for (int b = 0; b < num_buckets; ++b)
     count_bucket_groups(bucketed_.data() + bucket_offsets_[b],
                         bucketed_.data() + bucket_offsets_[b + 1]);
-  groups_.clear();
   for (int i = 0; i < n; ++i)
     if (group_counts_[i] > 0) groups_.push_back({active_[i], group_counts_[i]});
   return groups_;
