@@ -375,24 +375,23 @@ double ContactPotential::ccd(const Positions& p0, const Positions& p1) {
   ScopedTimer timer(stats_.ccd_seconds);
   const int n = num_items();
   stats_.ccd_calls += n;
-  double alpha = 1.0;
-  int non_finite = 0;  // std::min would drop a NaN bound and admit the whole step
-  // The smallest step found so far: no pair needs to advance past it. Each pair returns exactly
-  // min(its step, the bound it read), so α is the same in any order and on any thread count.
-  std::atomic<double> found{1.0};
-#pragma omp parallel for reduction(min : alpha) reduction(+ : non_finite) schedule(dynamic, 64) \
+  int non_finite = 0;  // a NaN bound would vanish in the minimum and admit the whole step
+  // α, the smallest step found so far: no pair needs to advance past it. Each pair returns
+  // exactly min(its step, the bound it read), so α is the same in any order and on any thread
+  // count.
+  std::atomic<double> alpha{1.0};
+#pragma omp parallel for reduction(+ : non_finite) schedule(dynamic, 64) \
     num_threads(loop_threads(n, kMinParallelItems / 16))
   for (int k = 0; k < n; ++k) {
     const Pair p = pair(k);
     const Vec12 xs = stencil_positions(p.vertices, p0);
     const Vec12 dx = stencil_positions(p.vertices, p1) - xs;
     const double t = pair_safe_step(p, xs, dx, p.offset, kCcdRescaling, ground(),
-                                    ccd_max_iterations_, found.load(std::memory_order_relaxed));
+                                    ccd_max_iterations_, alpha.load(std::memory_order_relaxed));
     if (std::isnan(t)) ++non_finite;
-    alpha = std::min(alpha, t);
-    lower_to(found, t);
+    lower_to(alpha, t);
   }
-  return non_finite > 0 ? std::numeric_limits<double>::quiet_NaN() : alpha;
+  return non_finite > 0 ? std::numeric_limits<double>::quiet_NaN() : alpha.load();
 }
 
 void ContactPotential::begin_solve(const Vector& x) {

@@ -21,9 +21,11 @@ double reference_distance(const Vec12& x, bool triangle) {
   return triangle ? reference_point_triangle_distance(x) : reference_edge_edge_distance(x);
 }
 
-double ccd(const Vec12& x, const Vec12& dx, bool triangle, double thickness, double t_max = 1.0) {
-  return triangle ? additive_ccd_point_triangle(x, dx, thickness, kS, t_max)
-                  : additive_ccd_edge_edge(x, dx, thickness, kS, t_max);
+double ccd(const Vec12& x, const Vec12& dx, bool triangle, double thickness, double t_max = 1.0,
+           double stop_at = std::numeric_limits<double>::infinity()) {
+  return triangle
+             ? additive_ccd_point_triangle(x, dx, thickness, kS, t_max, kAccdMaxIterations, stop_at)
+             : additive_ccd_edge_edge(x, dx, thickness, kS, t_max, kAccdMaxIterations, stop_at);
 }
 
 /// Minimum reference distance over `samples` + 1 equidistant times in [0, t].
@@ -43,6 +45,22 @@ void aim_first_primitive(const Vec12& x, bool triangle, Vec12& dx) {
   for (int k = 0; k < 4; ++k)
     (k < first ? c1 : c2) += vertex(x, k) / (k < first ? first : 4 - first);
   for (int k = 0; k < first; ++k) dx.segment<3>(3 * k) += 2.0 * (c2 - c1);
+}
+
+/// The i-th random query: point–triangle for even i, edge–edge for odd, its stencil of shape
+/// variant i/2, displacements of up to `speed` per vertex, every other pair of queries aimed
+/// through the other primitive.
+struct RandomQuery {
+  bool triangle;
+  Vec12 x, dx;
+};
+RandomQuery random_query(Random& rng, int i, double speed) {
+  RandomQuery q;
+  q.triangle = i % 2 == 0;
+  q.x = q.triangle ? random_point_triangle(rng, (i / 2) % 5) : random_edge_edge(rng, (i / 2) % 7);
+  for (int k = 0; k < 4; ++k) q.dx.segment<3>(3 * k) = rng.vec(speed);
+  if (i % 4 < 2) aim_first_primitive(q.x, q.triangle, q.dx);
+  return q;
 }
 
 }  // namespace
@@ -81,12 +99,7 @@ TEST(AdditiveCcd, RandomTrajectoriesNeverGetCloserThanThickness) {
   Random rng(6);
   int collisions = 0, free = 0;
   for (int i = 0; i < 6000; ++i) {
-    const bool triangle = i % 2 == 0;
-    const Vec12 x =
-        triangle ? random_point_triangle(rng, (i / 2) % 5) : random_edge_edge(rng, (i / 2) % 7);
-    Vec12 dx;
-    for (int k = 0; k < 4; ++k) dx.segment<3>(3 * k) = rng.vec(1.5);
-    if (i % 4 < 2) aim_first_primitive(x, triangle, dx);
+    const auto [triangle, x, dx] = random_query(rng, i, 1.5);
     const double xi = std::array<double, 4>{0.0, 1e-3, 1e-2, 5e-2}[rng.index(4)];
     const double d0 = reference_distance(x, triangle);
     if (d0 < xi + 1e-6) continue;  // starts in (or within rounding of) contact: tested below
@@ -114,20 +127,13 @@ TEST(AdditiveCcd, StoppingAtAKnownBoundGivesExactlyTheMinimumOfBoth) {
   Random rng(11);
   int cut = 0, kept = 0;
   for (int i = 0; i < 4000; ++i) {
-    const bool triangle = i % 2 == 0;
-    const Vec12 x =
-        triangle ? random_point_triangle(rng, (i / 2) % 5) : random_edge_edge(rng, (i / 2) % 7);
-    Vec12 dx;
-    for (int k = 0; k < 4; ++k) dx.segment<3>(3 * k) = rng.vec(i % 3 == 0 ? 20.0 : 1.5);
-    if (i % 4 < 2) aim_first_primitive(x, triangle, dx);
+    const auto [triangle, x, dx] = random_query(rng, i, i % 3 == 0 ? 20.0 : 1.5);
     const double xi = std::array<double, 3>{0.0, 1e-3, 1e-2}[rng.index(3)];
     if (reference_distance(x, triangle) < xi + 1e-6) continue;
     const double t = ccd(x, dx, triangle, xi);
     for (double stop_at : {0.0, 0.25 * t, 0.5, 0.999 * t, t, 0.9, 1.0, 2.0}) {
-      const double bounded =
-          triangle ? additive_ccd_point_triangle(x, dx, xi, kS, 1.0, kAccdMaxIterations, stop_at)
-                   : additive_ccd_edge_edge(x, dx, xi, kS, 1.0, kAccdMaxIterations, stop_at);
-      ASSERT_EQ(bounded, std::min(t, stop_at)) << "i = " << i << ", stop_at = " << stop_at;
+      ASSERT_EQ(ccd(x, dx, triangle, xi, 1.0, stop_at), std::min(t, stop_at))
+          << "i = " << i << ", stop_at = " << stop_at;
       (stop_at < t ? cut : kept) += 1;
     }
   }
