@@ -8,16 +8,13 @@
 // writes CSV.
 //
 // usage: bench_busy_core [csv_path] [grid_n] [steps]
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "bench_main.hpp"
+#include "busy_process.hpp"
 #include "cloth_over_sphere.hpp"
 #include "common/thread_budget.hpp"
 #include "common/timer.hpp"
@@ -26,27 +23,6 @@
 using namespace progsim;
 
 namespace {
-
-/// A child process spinning on a core until destroyed ("another process busy").
-class BusyProcess {
- public:
-  BusyProcess() : pid_(fork()) {
-    if (pid_ < 0) throw std::runtime_error("fork failed");
-    if (pid_ == 0) {
-      volatile unsigned long spin = 0;
-      for (;;) spin = spin + 1;
-    }
-  }
-  ~BusyProcess() {
-    kill(pid_, SIGKILL);
-    waitpid(pid_, nullptr, 0);
-  }
-  BusyProcess(const BusyProcess&) = delete;
-  BusyProcess& operator=(const BusyProcess&) = delete;
-
- private:
-  pid_t pid_;
-};
 
 struct Run {
   int setting = 0;
@@ -60,7 +36,8 @@ Run timed_run(const Scene& scene, int setting, bool busy, int steps) {
   set_thread_budget(setting);
   Run run{setting, busy};
   LevelSimulation sim(scene);
-  std::unique_ptr<BusyProcess> other = busy ? std::make_unique<BusyProcess>() : nullptr;
+  std::unique_ptr<bench::BusyProcess> other =
+      busy ? std::make_unique<bench::BusyProcess>() : nullptr;
   Timer timer;
   for (int s = 0; s < steps; ++s) run.newton_iterations += sim.step().newton.iterations;
   run.seconds = timer.seconds();

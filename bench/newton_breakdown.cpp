@@ -11,7 +11,7 @@
 #include <string>
 
 #include "bench_main.hpp"
-#include "mesh/mesh_generators.hpp"
+#include "hanging_cloth.hpp"
 #include "sim/level_simulation.hpp"
 
 using namespace progsim;
@@ -24,24 +24,9 @@ struct Row {
   double step_seconds;
 };
 
-Scene hanging_cloth(int n) {
-  Scene scene;
-  scene.name = "bench_cloth";
-  scene.time_step = 0.02;
-  scene.effects.enable(Effect::membrane);
-  scene.effects.enable(Effect::bending);
-  scene.effects.enable(Effect::gravity);
-  scene.solver.tolerance = 1e-4;
-  scene.bodies.push_back({"cloth", make_grid(1.0, 1.0, n, n), {}, 0.0, 0.0});
-  Handle corners;
-  corners.vertices = {n * (n + 1), (n + 1) * (n + 1) - 1};  // the two corners at y = 1
-  scene.handles.push_back(corners);
-  return scene;
-}
-
 Row measure(int n, int threads, int steps) {
   omp_set_num_threads(threads);
-  LevelSimulation sim(hanging_cloth(n));
+  LevelSimulation sim(bench::hanging_cloth(n));
   Row row{sim.model().rest.num_vertices(), threads, 0, {}, 0.0};
   for (int s = 0; s < steps; ++s) {
     const StepRecord r = sim.step();

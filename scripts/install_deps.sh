@@ -4,9 +4,12 @@
 # bindings and their tests, and a Rust toolchain for the bindgen crates.
 set -euo pipefail
 
+# Both OpenBLAS builds: Debian's libblas.so.3 alternative picks the pthreads one when present
+# (as on most machines with OpenBLAS), and the tests run the factorization under each
+# (tests/blas/blas_variants.cpp).
 APT_PACKAGES=(
   build-essential cmake ninja-build pkg-config ccache
-  libeigen3-dev libsuitesparse-dev libopenblas-openmp-dev libcgal-dev
+  libeigen3-dev libsuitesparse-dev libopenblas-openmp-dev libopenblas0-pthread libcgal-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libcairo2-dev fonts-dejavu-core
   clang-format clang-14 libclang-rt-14-dev libomp-14-dev libclang-dev
   python3-pip python3-venv

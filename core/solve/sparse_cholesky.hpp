@@ -33,10 +33,21 @@ class SparseCholesky {
   /// The diagonal shift σ of the last successful factorization (0 when none was needed).
   double shift() const { return shift_; }
 
+  /// Threads of the dense kernels (dpotrf, dsyrk, dgemm) in factorize() and solve(), where the
+  /// BLAS has a thread pool of its own (OpenBLAS built with pthreads; solve/blas_threads.hpp).
+  /// Default 1, whatever BLAS the system chose: results then do not depend on the thread count
+  /// and do not collapse when another process holds a core (bench_cholmod_threads measures
+  /// both). Throws Error(invalid_argument) below 1.
+  void set_blas_threads(int threads);
+
+  /// CHOLMOD's floating-point operation count of one factorization of the analysed pattern.
+  double factorization_flops() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   double shift_ = 0.0;
+  int blas_threads_ = 1;
 };
 
 }  // namespace progsim
