@@ -206,7 +206,7 @@ PHASES = [  # (label, our key(s), their key)
     ("broad phase, static boxes", ("broad_static",), "broad_static"),
     ("broad phase, swept boxes", ("broad_swept",), "broad_swept"),
     ("barrier value", ("value",), "value"),
-    ("barrier gradient (ours: + active set)", ("gradient",), "gradient"),
+    ("barrier gradient, after the value at that x (ours: + active set)", ("gradient",), "gradient"),
     ("barrier Hessian, PSD, assembled (ditto)", ("hessian",), "hessian"),
     ("  the same, first assembly (new pattern)", ("hessian_new_pattern",), "hessian"),
     ("CCD narrow phase", ("ccd_narrow",), "ccd_narrow"),

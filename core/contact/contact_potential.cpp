@@ -96,7 +96,7 @@ double ContactPotential::mollifier_threshold_of(const Pair& pair) const {
   return mollifier_threshold(stencil_positions(pair.vertices, mesh_.rest));
 }
 
-double ContactPotential::pair_energy(const Pair& pair, const Vec12& xs, Vec12* grad,
+double ContactPotential::pair_energy(const Pair& pair, const Vec12& xs, Vec12& grad,
                                      Mat12* hess) const {
   ClosestPair closest{};
   const double d2 = pair_distance_squared(pair, xs, ground(), &closest);
@@ -107,22 +107,21 @@ double ContactPotential::pair_energy(const Pair& pair, const Vec12& xs, Vec12* g
   const double b = stiffness_ * barrier(s, s_hat);
   const bool edge_edge = pair.kind == Pair::Kind::edge_edge;
   const double eps_x = edge_edge ? mollifier_threshold_of(pair) : 0.0;
-  if (!grad) return edge_edge ? mollifier(xs, eps_x) * b : b;
-  if (!hess) return pair_gradient(pair, xs, closest, s, s_hat, b, eps_x, *grad);
+  if (!hess) return pair_gradient(pair, xs, closest, s, s_hat, b, eps_x, grad);
   Vec12 gd;
   Mat12 hd;
   distance_squared_derivatives_of(pair, xs, closest, gd, hd);
   const double b1 = stiffness_ * barrier_first_derivative(s, s_hat);
   const double b2 = stiffness_ * barrier_second_derivative(s, s_hat);
-  *grad = b1 * gd;  // ∇(κb) = κ b' ∇d² (IPC eq. 7 per pair)
+  grad = b1 * gd;  // ∇(κb) = κ b' ∇d² (IPC eq. 7 per pair)
   *hess = b2 * gd * gd.transpose() + b1 * hd;
   if (!edge_edge) return b;
   double m;
   Vec12 gm;
   Mat12 hm;
   mollifier_derivatives(xs, eps_x, m, gm, hm);  // product rule for m·b (IPC eq. 23)
-  *hess = b * hm + gm * grad->transpose() + *grad * gm.transpose() + m * *hess;
-  *grad = b * gm + m * *grad;
+  *hess = b * hm + gm * grad.transpose() + grad * gm.transpose() + m * *hess;
+  grad = b * gm + m * grad;
   return m * b;
 }
 
@@ -147,13 +146,24 @@ void ContactPotential::gather_positions(const Vector& x, Positions& out) const {
   out.bottomRows(mesh_.num_obstacle_vertices) = obstacle_positions_;
 }
 
+double ContactPotential::pair_value(const Pair& pair, double d2, const Positions& positions) const {
+  const double s = barrier_argument(d2, pair.offset);
+  const double s_hat = barrier_activation(pair.offset, dhat_);
+  if (s <= 0.0) return std::numeric_limits<double>::infinity();
+  if (s >= s_hat) return 0.0;
+  const double b = stiffness_ * barrier(s, s_hat);
+  if (pair.kind != Pair::Kind::edge_edge) return b;
+  return mollifier(stencil_positions(pair.vertices, positions), mollifier_threshold_of(pair)) * b;
+}
+
 double ContactPotential::value(const Vector& x) const {
   ScopedTimer timer(stats_.assembly_seconds);
   gather_positions(x, positions_);
-  const int n = num_items();
-  return ordered_sum(n, [&](long k) {
-    const Pair p = pair(static_cast<int>(k));
-    return pair_energy(p, stencil_positions(p.vertices, positions_), nullptr, nullptr);
+  // Measured through the per-position cache: the gradient and Hessian at an accepted
+  // line-search point then measure nothing again.
+  measure_distances(positions_);
+  return ordered_sum(num_items(), [&](long k) {
+    return pair_value(pair(static_cast<int>(k)), distances_squared_[k], positions_);
   });
 }
 
@@ -281,7 +291,7 @@ void ContactPotential::add_gradient(const Vector& x, Vector& g) const {
 #pragma omp parallel for schedule(static) num_threads(loop_threads(n))
   for (int i = 0; i < n; ++i) {
     const Pair p = pair(groups[i].item);
-    pair_energy(p, stencil_positions(p.vertices, positions_), &grads[i], nullptr);
+    pair_energy(p, stencil_positions(p.vertices, positions_), grads[i], nullptr);
     grads[i] *= groups[i].count;
   }
   for (int i = 0; i < n; ++i) {  // serial scatter: deterministic
@@ -335,7 +345,7 @@ void ContactPotential::append_hessian_triplets(const Vector& x, bool project,
     const Pair p = pair(groups[i].item);
     Vec12 grad;
     Mat12 h;
-    pair_energy(p, stencil_positions(p.vertices, positions_), &grad, &h);
+    pair_energy(p, stencil_positions(p.vertices, positions_), grad, &h);
     hessians[i] = restricted_hessian(p, h, project);
     hessians[i].matrix *= groups[i].count;  // after the projection: it commutes with a count
   }

@@ -118,8 +118,12 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   void distance_squared_derivatives_of(const Pair& pair, const Vec12& xs,
                                        const ClosestPair& closest, Vec12& grad, Mat12& hess) const;
   double mollifier_threshold_of(const Pair& pair) const;
-  /// κ m b of one pair at stencil positions xs; gradient and Hessian when non-null.
-  double pair_energy(const Pair& pair, const Vec12& xs, Vec12* grad, Mat12* hess) const;
+  /// κ m b of one pair at stencil positions xs, with its gradient, and its Hessian when
+  /// non-null.
+  double pair_energy(const Pair& pair, const Vec12& xs, Vec12& grad, Mat12* hess) const;
+  /// κ m b of one pair whose squared distance d2 is known (IPC eqs. 6, 23): +∞ at contact, 0
+  /// beyond d̂; the edge–edge mollifier from the pair's `positions`.
+  double pair_value(const Pair& pair, double d2, const Positions& positions) const;
   /// pair_energy()'s gradient alone, from the pair's closest features, barrier argument s and
   /// activation ŝ, barrier value b = κ b(s, ŝ) and mollifier threshold ε_x (0 unless edge–edge).
   double pair_gradient(const Pair& pair, const Vec12& xs, const ClosestPair& closest, double s,
