@@ -87,10 +87,11 @@ int run(int argc, char** argv) {
   problem.finalize();
   const Vector x = dofs_of(frames.start);
   problem.begin_solve(x);
-  // Value and gradient measure their pairs once per position; the solver takes the gradient
-  // where the line search evaluated the energy, so the gradient is timed after an untimed value
-  // at the same x (as theirs after the collision set's build). Repeats alternate between x and
-  // x moved 1e-12 m, so that each value measures every candidate as a new position does.
+  // Value and gradient measure their pairs once per position (begin_solve() above measured x
+  // already); the solver takes the gradient where the line search evaluated the energy, so the
+  // gradient is timed after an untimed value at the same x (as theirs after the collision
+  // set's build). Repeats alternate between x and x moved 1e-12 m, so that each value measures
+  // every candidate as a new line-search point does.
   const Vector x_moved = x + Vector::Constant(x.size(), 1e-12);
   int calls = 0;
   const Vector* position = &x;
@@ -100,7 +101,11 @@ int run(int argc, char** argv) {
       bench::median_seconds_after(repeats, next_position, [&] { barrier.value(*position); });
   Vector gradient(x.size());
   const double t_gradient = bench::median_seconds_after(
-      repeats, [&] { next_position(), barrier.value(*position); },
+      repeats,
+      [&] {
+        next_position();
+        barrier.value(*position);
+      },
       [&] {
         gradient.setZero();
         barrier.add_gradient(*position, gradient);

@@ -169,7 +169,10 @@ double ContactPotential::value(const Vector& x) const {
 
 void ContactPotential::measure_distances(const Positions& positions) const {
   // Value, gradient and Hessian at one x measure the same pairs: measure them once.
-  if (measured_ && positions.rows() == measured_at_.rows() && positions == measured_at_) return;
+  // The size check also catches a candidate set changed without resetting measured_.
+  if (measured_ && distances_squared_.size() == static_cast<std::size_t>(num_items()) &&
+      positions.rows() == measured_at_.rows() && positions == measured_at_)
+    return;
   measured_at_ = positions;
   measured_ = true;
   const int n = num_items();

@@ -2,6 +2,8 @@
 
 #include <dlfcn.h>
 
+#include <mutex>
+
 namespace progsim {
 namespace {
 
@@ -24,13 +26,26 @@ OpenBlasControl find_openblas() {
   control.get_num_threads = reinterpret_cast<int (*)()>(dlsym(library, "openblas_get_num_threads"));
   control.set_num_threads =
       reinterpret_cast<void (*)(int)>(dlsym(library, "openblas_set_num_threads"));
-  dlclose(library);  // drops only the reference taken here
-  return control;
+  return control;  // the handle stays open: the pointers must outlive any unloading
 }
 
 const OpenBlasControl& openblas() {
   static const OpenBlasControl control = find_openblas();
   return control;
+}
+
+/// OpenBLAS's pool is one per process, and handles may factorize on several threads at once:
+/// the first scope in saves the pool's count and sets its own, the last one out restores it,
+/// and scopes in between leave it alone (they run on the first one's count).
+struct OpenScopes {
+  std::mutex mutex;
+  int open = 0;
+  int saved = 0;
+};
+
+OpenScopes& open_scopes() {
+  static OpenScopes scopes;
+  return scopes;
 }
 
 }  // namespace
@@ -53,14 +68,21 @@ BlasThreading loaded_blas_threading() {
 
 ScopedBlasThreads::ScopedBlasThreads(int threads) {
   if (threads < 1 || loaded_blas_threading() != BlasThreading::pthreads) return;
-  const int current = openblas().get_num_threads();
-  if (current == threads) return;
-  previous_ = current;
-  openblas().set_num_threads(threads);
+  OpenScopes& scopes = open_scopes();
+  const std::lock_guard<std::mutex> lock(scopes.mutex);
+  if (scopes.open++ == 0) {
+    scopes.saved = openblas().get_num_threads();
+    if (scopes.saved != threads) openblas().set_num_threads(threads);
+  }
+  counted_ = true;
 }
 
 ScopedBlasThreads::~ScopedBlasThreads() {
-  if (previous_ > 0) openblas().set_num_threads(previous_);
+  if (!counted_) return;
+  OpenScopes& scopes = open_scopes();
+  const std::lock_guard<std::mutex> lock(scopes.mutex);
+  if (--scopes.open == 0 && openblas().get_num_threads() != scopes.saved)
+    openblas().set_num_threads(scopes.saved);
 }
 
 }  // namespace progsim

@@ -19,8 +19,10 @@ enum class BlasThreading {
 BlasThreading loaded_blas_threading();
 
 /// Sets the loaded OpenBLAS's pthread pool to `threads` for the object's lifetime and restores
-/// the previous count after. Does nothing for any other BLAS (see BlasThreading): OpenBLAS on
-/// OpenMP follows the calling thread's omp_set_num_threads(), the others their own settings.
+/// the previous count after. The pool is one per process: while scopes overlap (factorizations
+/// on several threads) the first one's count holds until the last one ends. Does nothing for
+/// any other BLAS (see BlasThreading): OpenBLAS on OpenMP follows the calling thread's
+/// omp_set_num_threads(), the others their own settings.
 class ScopedBlasThreads {
  public:
   explicit ScopedBlasThreads(int threads);
@@ -29,7 +31,7 @@ class ScopedBlasThreads {
   ScopedBlasThreads& operator=(const ScopedBlasThreads&) = delete;
 
  private:
-  int previous_ = 0;  // 0: nothing was changed
+  bool counted_ = false;  // this scope is one of the open ones
 };
 
 }  // namespace progsim
