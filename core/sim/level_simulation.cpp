@@ -8,7 +8,6 @@
 #include "energy/consistency_penalty.hpp"
 #include "energy/dead_loads.hpp"
 #include "energy/gravity.hpp"
-#include "energy/hinge_bending.hpp"
 #include "energy/inertia.hpp"
 #include "energy/pressure.hpp"
 #include "energy/prolonged_elastics.hpp"
@@ -204,12 +203,10 @@ void LevelSimulation::add_proxy_elastics(Problem& problem, RampedTerms& ramped) 
   if (hessian == ProxyHessian::galerkin || (hessian == ProxyHessian::automatic && dynamic)) {
     // Lazily only where each step is solved to the tolerance: PSQ's capped preview steps
     // (preview_iterations) took more iterations with it and ended elsewhere.
-    // Where each step is solved to the tolerance, the Galerkin matrix only preconditions the
-    // proxy (its gradient stays exact), so its hinges take the Gauss–Newton block 2c ∇θ∇θᵀ
-    // instead of the clamped exact one (HingeProjection): on the 34K drape's 30-step preview
-    // 371 against 375 Newton iterations in 46.9 s against 91.9 s. PSQ's capped previews keep
-    // the exact block: there it moves where the capped steps end.
-    if (dynamic && finest.hinge) finest.hinge->set_projection(HingeProjection::gauss_newton);
+    // A dynamic scene's hinges take the Gauss–Newton block (make_shell_elastics): here, where
+    // the Galerkin matrix only preconditions the proxy, on the 34K drape's 30-step preview 371
+    // against 375 Newton iterations in 46.9 s against 91.9 s. PSQ's capped previews keep the
+    // exact block: there it moves where the capped steps end.
     const double refresh = dynamic ? scene_.progressive.galerkin_refresh *
                                          mean_edge_length(finest_->topology, finest_->rest.vertices)
                                    : 0.0;

@@ -13,7 +13,6 @@
 namespace progsim {
 
 class Gravity;
-class HingeBending;
 class Pressure;
 
 /// The terms, and which of them are pressures and gravity (to ramp the loads between steps).
@@ -21,7 +20,6 @@ struct ShellElastics {
   std::vector<std::unique_ptr<EnergyTerm>> terms;
   std::vector<std::pair<Pressure*, int>> pressures;  ///< (term owned by `terms`, body index)
   Gravity* gravity = nullptr;                        ///< owned by `terms`; null without gravity
-  HingeBending* hinge = nullptr;  ///< owned by `terms`; null without hinge bending
 };
 
 /// Membrane (of the given model), bending and (with_gravity) gravity on `model`, and a pressure
