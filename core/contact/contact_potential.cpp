@@ -99,12 +99,9 @@ double ContactPotential::mollifier_threshold_of(const Pair& pair) const {
 double ContactPotential::pair_energy(const Pair& pair, const Vec12& xs, Vec12& grad,
                                      Mat12* hess) const {
   ClosestPair closest{};
-  const double d2 = pair_distance_squared(pair, xs, ground(), &closest);
-  const double s = barrier_argument(d2, pair.offset);
-  const double s_hat = barrier_activation(pair.offset, dhat_);
-  if (s <= 0.0) return std::numeric_limits<double>::infinity();
-  if (s >= s_hat) return 0.0;
-  const double b = stiffness_ * barrier(s, s_hat);
+  const PairBarrier at = pair_barrier(pair, pair_distance_squared(pair, xs, ground(), &closest));
+  if (!at.active) return at.b;
+  const double s = at.s, s_hat = at.s_hat, b = at.b;
   const bool edge_edge = pair.kind == Pair::Kind::edge_edge;
   const double eps_x = edge_edge ? mollifier_threshold_of(pair) : 0.0;
   if (!hess) return pair_gradient(pair, xs, closest, s, s_hat, b, eps_x, grad);
@@ -146,14 +143,19 @@ void ContactPotential::gather_positions(const Vector& x, Positions& out) const {
   out.bottomRows(mesh_.num_obstacle_vertices) = obstacle_positions_;
 }
 
-double ContactPotential::pair_value(const Pair& pair, double d2, const Positions& positions) const {
+ContactPotential::PairBarrier ContactPotential::pair_barrier(const Pair& pair, double d2) const {
   const double s = barrier_argument(d2, pair.offset);
   const double s_hat = barrier_activation(pair.offset, dhat_);
-  if (s <= 0.0) return std::numeric_limits<double>::infinity();
-  if (s >= s_hat) return 0.0;
-  const double b = stiffness_ * barrier(s, s_hat);
-  if (pair.kind != Pair::Kind::edge_edge) return b;
-  return mollifier(stencil_positions(pair.vertices, positions), mollifier_threshold_of(pair)) * b;
+  if (s <= 0.0) return {s, s_hat, std::numeric_limits<double>::infinity(), false};
+  if (s >= s_hat) return {s, s_hat, 0.0, false};
+  return {s, s_hat, stiffness_ * barrier(s, s_hat), true};  // κ b(s, ŝ), IPC eq. 6
+}
+
+double ContactPotential::pair_value(const Pair& pair, double d2, const Positions& positions) const {
+  const PairBarrier at = pair_barrier(pair, d2);
+  if (!at.active || pair.kind != Pair::Kind::edge_edge) return at.b;
+  return mollifier(stencil_positions(pair.vertices, positions), mollifier_threshold_of(pair)) *
+         at.b;
 }
 
 double ContactPotential::value(const Vector& x) const {

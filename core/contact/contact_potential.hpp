@@ -121,6 +121,13 @@ class ContactPotential : public ChangingPatternTerm, public StepFilter {
   /// κ m b of one pair at stencil positions xs, with its gradient, and its Hessian when
   /// non-null.
   double pair_energy(const Pair& pair, const Vec12& xs, Vec12& grad, Mat12* hess) const;
+  /// A pair's barrier at squared distance d2: s = d² − ξ², its activation ŝ, and b = κ b(s, ŝ)
+  /// when active (0 < s < ŝ); otherwise b is the energy (+∞ at contact, 0 beyond d̂).
+  struct PairBarrier {
+    double s, s_hat, b;
+    bool active;
+  };
+  PairBarrier pair_barrier(const Pair& pair, double d2) const;
   /// κ m b of one pair whose squared distance d2 is known (IPC eqs. 6, 23): +∞ at contact, 0
   /// beyond d̂; the edge–edge mollifier from the pair's `positions`.
   double pair_value(const Pair& pair, double d2, const Positions& positions) const;
