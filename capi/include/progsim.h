@@ -704,6 +704,30 @@ typedef enum ps_axis {
  */
 PS_API int32_t ps_sim_set_handle_axes(ps_sim* sim, int32_t handle, uint32_t axes);
 
+/** What a handle holds of its vertices (scene key handles[i].support). */
+typedef enum ps_support {
+  /** Each vertex's prescribed coordinates follow the script, the others are free per vertex
+   *  (a clamp, a roller, a symmetry plane): "position", every handle's default. */
+  PS_SUPPORT_POSITION = 0,
+  /** The group moves rigidly: it turns as its script turns it (held still by a static script)
+   *  and translates freely along the coordinates outside its axes, one translation for all its
+   *  vertices: "rotation". Give it two or more rows of a shell's vertices to hold a slope (a
+   *  guided clamp; an end turned with its position free). Single-level simulations only. */
+  PS_SUPPORT_ROTATION = 1,
+  PS_SUPPORT_FORCE32 = 0x7fffffff
+} ps_support;
+
+/**
+ * Makes handle `handle` a `support` (a ps_support) prescribing the coordinates in `axes`
+ * (ps_axis bits; 0 allowed only for PS_SUPPORT_ROTATION: a free translation) from the next step
+ * on. Scene keys handles[i].support and handles[i].axes. Errors: PS_ERROR_OUT_OF_RANGE (no such
+ * handle), PS_ERROR_INVALID_ARGUMENT (not a ps_support), PS_ERROR_INVALID_SCENE (axes 0 for a
+ * position support, bits other than PS_AXIS_ALL), PS_ERROR_UNSUPPORTED (a rotation support on a
+ * simulation of several levels); on error the handle is unchanged.
+ */
+PS_API int32_t ps_sim_set_handle_support(ps_sim* sim, int32_t handle, int32_t support,
+                                         uint32_t axes);
+
 /** The force and moment a handle's support applies to the shell. */
 typedef struct ps_handle_reaction {
   double force[3];  /**< N, Σ over its vertices; 0 along the coordinates it leaves free */

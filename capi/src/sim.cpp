@@ -373,6 +373,22 @@ PS_API int32_t ps_sim_set_handle_axes(ps_sim* sim, int32_t handle, uint32_t axes
   });
 }
 
+PS_API int32_t ps_sim_set_handle_support(ps_sim* sim, int32_t handle, int32_t support,
+                                         uint32_t axes) {
+  return guarded(error_slot(sim), "ps_sim_set_handle_support", [&] {
+    require_idle(sim);
+    require_handle(*sim, handle);
+    if (support != PS_SUPPORT_POSITION && support != PS_SUPPORT_ROTATION)
+      api_fail(PS_ERROR_INVALID_ARGUMENT,
+               "support = " + std::to_string(support) + " is not a ps_support");
+    edit_scene(*sim, [&](Scene& scene) {
+      scene.handles[handle].support =
+          support == PS_SUPPORT_ROTATION ? HandleSupport::rotation : HandleSupport::position;
+      scene.handles[handle].axes = axes;
+    });
+  });
+}
+
 PS_API int32_t ps_sim_get_handle_reaction(const ps_sim* sim, int32_t level, int32_t handle,
                                           ps_handle_reaction* out) {
   return guarded(error_slot(sim), "ps_sim_get_handle_reaction", [&] {

@@ -51,6 +51,20 @@ void Problem::set_fixed_dofs(const std::vector<bool>& fixed) {
   if (finalized_) finalize();
 }
 
+void Problem::set_shared_dofs(std::vector<std::vector<int>> groups) {
+  std::vector<bool> seen(num_dofs_, false);
+  for (const std::vector<int>& group : groups)
+    for (int d : group) {
+      if (d < 0 || d >= num_dofs_ || seen[d] || fixed_[d])
+        fail(Status::invalid_argument, "Problem: shared DOF " + std::to_string(d) +
+                                           " is out of range, fixed or in two groups (" +
+                                           std::to_string(num_dofs_) + " DOFs)");
+      seen[d] = true;
+    }
+  shared_ = std::move(groups);
+  if (finalized_) finalize();
+}
+
 void Problem::finalize() {
   build_reduction();
   build_hessian_pattern();
@@ -59,13 +73,42 @@ void Problem::finalize() {
 }
 
 void Problem::build_reduction() {
+  number_unknowns();
+  list_unknown_dofs();
+}
+
+/// full_to_free_: free DOFs numbered in order, each shared group once, at its smallest DOF.
+void Problem::number_unknowns() {
   full_to_free_.assign(num_dofs_, -1);
-  free_to_full_.clear();
-  for (int d = 0; d < num_dofs_; ++d) {
-    if (fixed_[d]) continue;
-    full_to_free_[d] = static_cast<int>(free_to_full_.size());
-    free_to_full_.push_back(d);
+  for (const std::vector<int>& group : shared_) {
+    if (group.empty()) continue;
+    const int owner = *std::min_element(group.begin(), group.end());
+    for (int d : group) {
+      if (fixed_[d])
+        fail(Status::invalid_argument, "Problem: shared DOF " + std::to_string(d) + " is fixed");
+      full_to_free_[d] = -2 - owner;  // marks a group member until its owner is numbered
+    }
   }
+  int unknowns = 0;
+  for (int d = 0; d < num_dofs_; ++d)
+    if (!fixed_[d] && (full_to_free_[d] == -1 || full_to_free_[d] == -2 - d))
+      full_to_free_[d] = unknowns++;
+  for (int d = 0; d < num_dofs_; ++d)
+    if (full_to_free_[d] < -1) full_to_free_[d] = full_to_free_[-2 - full_to_free_[d]];
+}
+
+/// free_offsets_ / free_dofs_: the DOFs of each unknown (CSR), ascending.
+void Problem::list_unknown_dofs() {
+  int unknowns = 0;
+  for (int u : full_to_free_) unknowns = std::max(unknowns, u + 1);
+  free_offsets_.assign(unknowns + 1, 0);
+  for (int d = 0; d < num_dofs_; ++d)
+    if (full_to_free_[d] >= 0) ++free_offsets_[full_to_free_[d] + 1];
+  std::partial_sum(free_offsets_.begin(), free_offsets_.end(), free_offsets_.begin());
+  free_dofs_.resize(free_offsets_.back());
+  std::vector<int> next(free_offsets_.begin(), free_offsets_.end() - 1);
+  for (int d = 0; d < num_dofs_; ++d)
+    if (full_to_free_[d] >= 0) free_dofs_[next[full_to_free_[d]]++] = d;
 }
 
 void Problem::build_hessian_pattern() {
@@ -287,12 +330,17 @@ bool Problem::end_iteration(const Vector& x) {
 
 void Problem::restrict_to_free(const Vector& full, Vector& reduced) const {
   reduced.resize(num_free());
-  for (int i = 0; i < num_free(); ++i) reduced[i] = full[free_to_full_[i]];
+  for (int i = 0; i < num_free(); ++i) {
+    double sum = 0.0;
+    for (int k = free_offsets_[i]; k < free_offsets_[i + 1]; ++k) sum += full[free_dofs_[k]];
+    reduced[i] = sum;
+  }
 }
 
 void Problem::expand_from_free(const Vector& reduced, Vector& full) const {
   full.setZero(num_dofs_);
-  for (int i = 0; i < num_free(); ++i) full[free_to_full_[i]] = reduced[i];
+  for (int i = 0; i < num_free(); ++i)
+    for (int k = free_offsets_[i]; k < free_offsets_[i + 1]; ++k) full[free_dofs_[k]] = reduced[i];
 }
 
 EnergyTerm* Problem::find_term(const std::string& name) {

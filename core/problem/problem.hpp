@@ -33,12 +33,18 @@ class Problem {
   /// Marks DOFs as fixed (size num_dofs). Their values come from x; the solver never moves them.
   void set_fixed_dofs(const std::vector<bool>& fixed);
 
+  /// Ties groups of free DOFs together: every DOF of a group moves by the same amount, one
+  /// unknown for the group (a rigid support's common translation along one axis). The reduced
+  /// problem is then Sᵀ∇E and SᵀHS with S the 0/1 matrix from unknowns to DOFs. Groups are
+  /// disjoint and hold no fixed DOF; throws Error(invalid_argument) otherwise.
+  void set_shared_dofs(std::vector<std::vector<int>> groups);
+
   /// Builds the reduced Hessian pattern. Call after the terms and fixed DOFs are set.
   void finalize();
 
   int num_dofs() const { return num_dofs_; }
-  /// Number of free DOFs (the size of reduced vectors).
-  int num_free() const { return static_cast<int>(free_to_full_.size()); }
+  /// Number of unknowns (the size of reduced vectors): free DOFs, a shared group counting once.
+  int num_free() const { return static_cast<int>(free_offsets_.size()) - 1; }
   bool is_fixed(int dof) const { return full_to_free_[dof] < 0; }
 
   /// E(x).
@@ -71,9 +77,10 @@ class Problem {
   double max_step(const Vector& x, const Vector& p);
   bool end_iteration(const Vector& x);
 
-  /// reduced = full restricted to the free DOFs.
+  /// reduced = Sᵀ full: per unknown, the sum of its DOFs' entries (a gradient's reduction; a
+  /// free DOF of no group is its own unknown).
   void restrict_to_free(const Vector& full, Vector& reduced) const;
-  /// full[free] = reduced, full[fixed] = 0.
+  /// full = S reduced: each free DOF takes its unknown's value, full[fixed] = 0.
   void expand_from_free(const Vector& reduced, Vector& full) const;
 
   /// Counters per term, in the order terms were added.
@@ -85,6 +92,8 @@ class Problem {
  private:
   void add_term_impl(std::unique_ptr<EnergyTerm> term);
   void build_reduction();
+  void number_unknowns();
+  void list_unknown_dofs();
   void build_hessian_pattern();
   const SparseMatrix& add_changing_pattern_terms(const Vector& x, bool project_psd);
   bool locate_triplets_in_combined();
@@ -95,8 +104,10 @@ class Problem {
   int num_dofs_;
   bool finalized_ = false;
   std::vector<bool> fixed_;
-  std::vector<int> full_to_free_;  // −1 for fixed DOFs
-  std::vector<int> free_to_full_;
+  std::vector<std::vector<int>> shared_;
+  std::vector<int> full_to_free_;     // the unknown of each DOF, −1 for fixed DOFs
+  std::vector<int> free_offsets_{0};  // unknown i's DOFs: free_dofs_[free_offsets_[i] ..]
+  std::vector<int> free_dofs_;
   std::vector<std::unique_ptr<EnergyTerm>> terms_;
   std::vector<TermStats> stats_;
   std::vector<std::size_t> entry_offsets_;  // per term, into entry_values_

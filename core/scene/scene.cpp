@@ -136,9 +136,14 @@ void validate_handle(const Scene& scene, std::size_t h) {
   const std::string where = "handles[" + std::to_string(h) + "]";
   validate_group(scene, handle.body, handle.vertices, where);
   validate_motion(handle.motion, where + ".motion");
-  if (handle.axes == 0 || (handle.axes & ~unsigned{handle_axes_all}) != 0)
+  const bool rotation = handle.support == HandleSupport::rotation;
+  if ((handle.axes == 0 && !rotation) || (handle.axes & ~unsigned{handle_axes_all}) != 0)
     fail(Status::invalid_scene, where + ": axes " + std::to_string(handle.axes) +
-                                    " must be a non-empty set of x (1), y (2), z (4)");
+                                    " must be a non-empty set of x (1), y (2), z (4)" +
+                                    " (empty only for a rotation support)");
+  if (rotation && scene.progressive.enabled())
+    fail(Status::unsupported, where + ": a rotation support needs a direct simulation " +
+                                  "(progressive levels hold their handles by position only)");
 }
 
 /// Body index, a non-empty group of vertices in range, finite values, a ramp ≥ 0 and, with a

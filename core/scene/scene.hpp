@@ -138,14 +138,30 @@ struct Scene;
 std::vector<int> body_vertices_in(const Scene& scene, int body, const VertexBox& box,
                                   const std::string& what);
 
+/// What a handle holds of its vertices.
+enum class HandleSupport {
+  /// Each vertex's prescribed coordinates (Handle::axes) follow the script; the others are free
+  /// per vertex: a clamp, a roller or a symmetry plane.
+  position,
+  /// The group moves rigidly: it turns as the script turns it (held still by a static script),
+  /// and translates freely along the coordinates not in Handle::axes, by one translation common
+  /// to its vertices. A shell has no rotational DOFs, so a group of two or more rows of vertices
+  /// holds the slope of a rotation support (a guided or sliding clamp; a prescribed end rotation
+  /// with a free end position, as in Sze et al. 2004's roll-up test). Direct simulations only.
+  rotation,
+};
+
 /// Vertices of one body held on a scripted trajectory (Dirichlet boundary condition).
 struct Handle {
   int body = 0;               ///< index into Scene::bodies
   std::vector<int> vertices;  ///< vertex indices within the body's mesh
   HandleMotion motion;
-  /// The world coordinates the handle prescribes (HandleAxis bits, at least one); the others
-  /// are free: a roller or a symmetry plane. The script moves only the prescribed coordinates.
+  /// The world coordinates the handle prescribes (HandleAxis bits); the others are free: a
+  /// roller or a symmetry plane. A position support needs at least one; a rotation support may
+  /// have none (a free translation). The script moves only the prescribed coordinates of a
+  /// position support.
   unsigned axes = handle_axes_all;
+  HandleSupport support = HandleSupport::position;  ///< what the handle holds
   /// The box that selected `vertices` when a box alone did: a level with other vertices (VPD's
   /// coarse tet levels) selects its own by it. Empty for vertices listed by index.
   std::optional<VertexBox> region;

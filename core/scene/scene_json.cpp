@@ -378,8 +378,9 @@ HandleMotion motion(const Json& j, const std::string& where) {
   return m;
 }
 
-/// "axes": the letters of the coordinates a handle prescribes, e.g. "xz" (HandleAxis bits).
-unsigned handle_axes(const Json& j, const std::string& where) {
+/// "axes": the letters of the coordinates a handle prescribes, e.g. "xz" (HandleAxis bits); ""
+/// only where `allow_none` (a rotation support's free translation).
+unsigned handle_axes(const Json& j, const std::string& where, bool allow_none) {
   if (!j.is_string()) scene_error(where, "must be a string of axes such as \"xz\"");
   const std::string letters = j.get<std::string>();
   unsigned axes = 0;
@@ -389,7 +390,9 @@ unsigned handle_axes(const Json& j, const std::string& where) {
       scene_error(where, "'" + letters + "' must list each of x, y, z at most once");
     axes |= 1u << k;
   }
-  if (axes == 0) scene_error(where, "holds no axis (give e.g. \"xyz\" or \"y\")");
+  if (axes == 0 && !allow_none)
+    scene_error(where, "holds no axis (give e.g. \"xyz\" or \"y\"; \"\" only with \"support\": " +
+                           std::string("\"rotation\")"));
   return axes;
 }
 
@@ -425,14 +428,19 @@ VertexSelection vertex_selection(const Json& j, const std::vector<Body>& bodies,
 }
 
 Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string& where) {
-  expect_keys(j, where, {"body", "vertices", "box", "motion", "axes"});
+  expect_keys(j, where, {"body", "vertices", "box", "motion", "axes", "support"});
   Handle h;
   VertexSelection selection = vertex_selection(j, bodies, where);
   h.body = selection.body;
   h.vertices = std::move(selection.vertices);
   h.region = selection.region;
   if (j.contains("motion")) h.motion = motion(j.at("motion"), where + ".motion");
-  if (j.contains("axes")) h.axes = handle_axes(j.at("axes"), where + ".axes");
+  h.support = choice<HandleSupport>(
+      j, "support", where,
+      {{"position", HandleSupport::position}, {"rotation", HandleSupport::rotation}});
+  const bool rotation = h.support == HandleSupport::rotation;
+  if (rotation) h.axes = 0;  // a rotation support translates freely unless "axes" holds some
+  if (j.contains("axes")) h.axes = handle_axes(j.at("axes"), where + ".axes", rotation);
   return h;
 }
 

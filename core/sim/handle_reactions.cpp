@@ -3,29 +3,39 @@
 #include <Eigen/Geometry>
 
 namespace progsim {
+namespace {
+
+/// Calls visit(dof, handle) for every prescribed and every carried DOF of `handles`.
+template <class Visit>
+void for_each_held_dof(const HandleTargets& handles, Visit visit) {
+  for (std::size_t i = 0; i < handles.dofs().size(); ++i)
+    visit(handles.dofs()[i], handles.dof_handles()[i]);
+  for (std::size_t i = 0; i < handles.carried_dofs().size(); ++i)
+    visit(handles.carried_dofs()[i], handles.carried_dof_handles()[i]);
+}
+
+}  // namespace
 
 std::vector<HandleReaction> handle_reactions(const HandleTargets& handles, const Vector& x,
                                              const Vector& gradient) {
-  const std::vector<int>& dofs = handles.dofs();
-  const std::vector<int>& owner = handles.dof_handles();
   std::vector<HandleReaction> out(handles.num_handles());
-  std::vector<int> count(out.size(), 0), last_vertex(out.size(), -1);
-  for (std::size_t i = 0; i < dofs.size(); ++i) {  // centroids of the held vertices
-    const int v = dofs[i] / 3;
-    if (v == last_vertex[owner[i]]) continue;
-    last_vertex[owner[i]] = v;
-    out[owner[i]].point += x.segment<3>(3 * v);
-    ++count[owner[i]];
-  }
+  std::vector<int> count(out.size(), 0);
+  std::vector<char> counted(x.size() / 3, 0);
+  for_each_held_dof(handles, [&](int dof, int h) {  // centroids of the held vertices
+    const int v = dof / 3;
+    if (counted[v]) return;
+    counted[v] = 1;
+    out[h].point += x.segment<3>(3 * v);
+    ++count[h];
+  });
   for (std::size_t h = 0; h < out.size(); ++h)
     if (count[h] > 0) out[h].point /= count[h];
-  for (std::size_t i = 0; i < dofs.size(); ++i) {
-    HandleReaction& r = out[owner[i]];
-    const int v = dofs[i] / 3, k = dofs[i] % 3;
-    const Vec3 force = gradient[dofs[i]] * Vec3::Unit(k);  // R_d = ∂E/∂x_d
+  for_each_held_dof(handles, [&](int dof, int h) {
+    HandleReaction& r = out[h];
+    const Vec3 force = gradient[dof] * Vec3::Unit(dof % 3);  // R_d = ∂E/∂x_d
     r.force += force;
-    r.moment += (x.segment<3>(3 * v) - r.point).cross(force);
-  }
+    r.moment += (x.segment<3>(3 * (dof / 3)) - r.point).cross(force);
+  });
   return out;
 }
 

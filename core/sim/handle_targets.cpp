@@ -1,5 +1,7 @@
 #include "sim/handle_targets.hpp"
 
+#include <map>
+
 #include "common/error.hpp"
 
 namespace progsim {
@@ -24,31 +26,55 @@ HandleTargets::HandleTargets(const Scene& scene, const Positions& rest,
       fail(Status::invalid_argument, "vertex " + std::to_string(v) + " belongs to handle " +
                                          std::to_string(h) + " but the scene has " +
                                          std::to_string(motions_.size()) + " handles");
+    const Handle& handle = scene.handles[h];
     for (int k = 0; k < 3; ++k) {
-      if ((scene.handles[h].axes & (1u << k)) == 0) continue;
-      dofs_.push_back(3 * v + k);
-      dof_handle_.push_back(h);
-      rest_.push_back(rest.row(v).transpose());
+      if ((handle.axes & (1u << k)) != 0)
+        prescribed_.add(3 * v + k, h, rest.row(v).transpose());
+      else if (handle.support == HandleSupport::rotation)
+        carried_.add(3 * v + k, h, rest.row(v).transpose());
     }
   }
 }
 
 std::vector<bool> HandleTargets::fixed_dofs(int num_vertices) const {
   std::vector<bool> fixed(3 * static_cast<std::size_t>(num_vertices), false);
-  for (int d : dofs_) fixed[d] = true;
+  for (int d : prescribed_.dofs) fixed[d] = true;
   return fixed;
 }
 
+std::vector<std::vector<int>> HandleTargets::shared_dofs() const {
+  std::map<std::pair<int, int>, std::vector<int>> groups;  // (handle, axis) → its DOFs
+  for (std::size_t i = 0; i < carried_.dofs.size(); ++i)
+    groups[{carried_.handle[i], carried_.dofs[i] % 3}].push_back(carried_.dofs[i]);
+  std::vector<std::vector<int>> out;
+  for (auto& [key, dofs] : groups) out.push_back(std::move(dofs));
+  return out;
+}
+
+std::vector<bool> HandleTargets::scripted_dofs(int num_vertices) const {
+  std::vector<bool> scripted = fixed_dofs(num_vertices);
+  for (int d : carried_.dofs) scripted[d] = true;
+  return scripted;
+}
+
+double HandleTargets::target(const DofList& list, std::size_t i, double t) const {
+  return motions_[list.handle[i]].position(list.rest[i], t)[list.dofs[i] % 3];
+}
+
 Vector HandleTargets::dof_targets(double t) const {
-  Vector out(dofs_.size());
-  for (std::size_t i = 0; i < dofs_.size(); ++i)
-    out[i] = motions_[dof_handle_[i]].position(rest_[i], t)[dofs_[i] % 3];
+  Vector out(prescribed_.dofs.size());
+  for (std::size_t i = 0; i < prescribed_.dofs.size(); ++i) out[i] = target(prescribed_, i, t);
   return out;
 }
 
 void HandleTargets::apply(double t, Vector& x) const {
-  for (std::size_t i = 0; i < dofs_.size(); ++i)
-    x[dofs_[i]] = motions_[dof_handle_[i]].position(rest_[i], t)[dofs_[i] % 3];
+  for (std::size_t i = 0; i < prescribed_.dofs.size(); ++i)
+    x[prescribed_.dofs[i]] = target(prescribed_, i, t);
+}
+
+void HandleTargets::carry(double t_from, double t, Vector& x) const {
+  for (std::size_t i = 0; i < carried_.dofs.size(); ++i)
+    x[carried_.dofs[i]] += target(carried_, i, t) - target(carried_, i, t_from);
 }
 
 }  // namespace progsim

@@ -14,6 +14,8 @@ std::vector<int> vertex_handles(const Scene& scene, const ShellModel& model);
 
 /// The handle vertices of one level (indices into its model), their rest positions and the
 /// coordinates each handle prescribes (Handle::axes); evaluates each handle's rigid script.
+/// A rotation support's other coordinates are carried: they move by the script's change and
+/// share one free translation per handle and axis (shared_dofs()).
 class HandleTargets {
  public:
   /// `vertex_handle` (|V|): per vertex of `rest`, its handle in scene.handles or −1. On a
@@ -25,8 +27,23 @@ class HandleTargets {
   /// Fixed-DOF mask (3|V|): the prescribed coordinates of every handle vertex.
   std::vector<bool> fixed_dofs(int num_vertices) const;
 
+  /// The carried DOFs grouped per rotation support and axis, each group one unknown
+  /// (Problem::set_shared_dofs).
+  std::vector<std::vector<int>> shared_dofs() const;
+
+  /// Mask (3|V|) of the DOFs a script moves: prescribed and carried.
+  std::vector<bool> scripted_dofs(int num_vertices) const;
+
+  /// Adds to x (3|V|) the change of the script from time t_from to t (s) at every carried DOF:
+  /// the rotation a rotation support's group turns through, its free translation kept.
+  void carry(double t_from, double t, Vector& x) const;
+
+  /// The carried DOFs (3v + k) and the handle of each.
+  const std::vector<int>& carried_dofs() const { return carried_.dofs; }
+  const std::vector<int>& carried_dof_handles() const { return carried_.handle; }
+
   /// The prescribed DOFs (indices 3v + k), in the order dof_targets() fills.
-  const std::vector<int>& dofs() const { return dofs_; }
+  const std::vector<int>& dofs() const { return prescribed_.dofs; }
 
   /// Writes each prescribed coordinate's target at time t (s) into x (3|V|), the others
   /// untouched: x_i(t) = c + R(ω t)(x̄_i − c) + v t + offset.
@@ -39,14 +56,26 @@ class HandleTargets {
   int num_handles() const { return static_cast<int>(motions_.size()); }
 
   /// The handle each prescribed DOF belongs to, in the order of dofs().
-  const std::vector<int>& dof_handles() const { return dof_handle_; }
+  const std::vector<int>& dof_handles() const { return prescribed_.handle; }
 
-  bool empty() const { return dofs_.empty(); }
+  bool empty() const { return prescribed_.dofs.empty() && carried_.dofs.empty(); }
 
  private:
-  std::vector<int> dofs_;        // prescribed DOF 3v + k
-  std::vector<int> dof_handle_;  // which handle each prescribed DOF belongs to
-  std::vector<Vec3> rest_;       // rest position of each prescribed DOF's vertex
+  /// DOFs 3v + k with their handle and their vertex's rest position.
+  struct DofList {
+    std::vector<int> dofs, handle;
+    std::vector<Vec3> rest;
+    void add(int dof, int h, const Vec3& x) {
+      dofs.push_back(dof);
+      handle.push_back(h);
+      rest.push_back(x);
+    }
+  };
+  /// The script's coordinate of DOF i of `list` at time t.
+  double target(const DofList& list, std::size_t i, double t) const;
+
+  DofList prescribed_;  // the handles' axes
+  DofList carried_;     // rotation supports' coordinates outside their axes
   std::vector<HandleMotion> motions_;
 };
 

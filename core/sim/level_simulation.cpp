@@ -108,6 +108,9 @@ void LevelSimulation::build_models() {
     model_.vertex_masses = prolonged_masses(level_.to_finest, finest.vertex_masses);
   finest_handles_ = HandleTargets(scene_, finest.rest.vertices, finest_handles);
   handles_ = HandleTargets(scene_, model_.rest.vertices, level_groups(h, level_.level));
+  if (!handles_.carried_dofs().empty())
+    fail(Status::unsupported, "a rotation support needs a direct simulation: level " +
+                                  std::to_string(level_.level) + " is a coarse level");
   finest_ =
       !level_.to_finest.empty() ? std::make_shared<const ShellModel>(std::move(finest)) : nullptr;
 }
@@ -145,8 +148,10 @@ void LevelSimulation::build_problem() {
       strain_limit = &problem->add_term(std::move(term));
     }
   problem->set_fixed_dofs(handles_.fixed_dofs(n));
+  problem->set_shared_dofs(handles_.shared_dofs());  // rotation supports' free translations
   problem->finalize();
   problem_ = std::move(problem);
+  scripted_ = handles_.scripted_dofs(n);
   inertia_ = inertia;
   penalty_ = penalty;
   ramped_ = std::move(ramped);
@@ -262,12 +267,14 @@ void LevelSimulation::apply_ramps(double t) {
 double LevelSimulation::advance_scripts(double t, double decrement_scale, NewtonReport& report) {
   script_target_ = x_;
   handles_.apply(t, script_target_);
+  carried_step_.setZero(x_.size());
+  handles_.carry(time(), t, carried_step_);
   const Positions obstacle_target = obstacles_->at(t);  // empty without contact
   double reached = 0.0;
   for (int round = 0; round < kMaxScriptRounds; ++round) {
-    script_step_ = script_target_ - x_;  // handles only: the solve moves the free DOFs
-    for (int d = 0; d < problem_->num_dofs(); ++d)
-      if (!problem_->is_fixed(d)) script_step_[d] = 0.0;
+    script_step_ = script_target_ - x_;             // handles only: the solve moves the free DOFs
+    for (int d = 0; d < problem_->num_dofs(); ++d)  // a rotation support: the turn still ahead
+      if (!problem_->is_fixed(d)) script_step_[d] = (1.0 - reached) * carried_step_[d];
     const Positions obstacles_now = obstacle_positions();
     if (script_step_.isZero(0.0) && obstacles_now == obstacle_target) return 1.0;
     const double alpha = max_script_step(obstacle_target);
@@ -304,12 +311,11 @@ double LevelSimulation::max_script_step(const Positions& obstacle_target) {
 }
 
 void LevelSimulation::finish_scripts(double t, const Positions& obstacle_target) {
-  if (contact_) {
-    x_ += script_step_;  // with the shell vertices the obstacles carry
+  x_ += script_step_;  // with the shell vertices the obstacles carry
+  if (contact_)
     contact_->set_obstacle_positions(obstacle_target);
-  } else {
+  else
     handles_.apply(t, x_);  // exactly at their targets
-  }
   fit_limits_to_prescribed_motion();
 }
 
@@ -320,7 +326,7 @@ bool LevelSimulation::carry_shell(const Positions& obstacle_target) {
   const Vector carried = contact_->carried_motion(x_, obstacle_target);
   bool any = false;
   for (int d = 0; d < problem_->num_dofs(); ++d)
-    if (!problem_->is_fixed(d) && carried[d] != 0.0) {
+    if (!scripted_[d] && carried[d] != 0.0) {
       script_step_[d] = carried[d];
       any = true;
     }
@@ -473,7 +479,7 @@ MotionRecord LevelSimulation::motion(const Vector& older, const Vector& before,
   // problem, with h²M⁻¹f(xᵗ⁺¹) = xᵗ⁺¹ − x̂ − h²M⁻¹∇E read from the solve.
   double error = 0.0, residual = 0.0, free_mass = 0.0;
   for (Eigen::Index d = 0; d < x_.size(); ++d) {
-    if (problem_->is_fixed(static_cast<int>(d))) continue;
+    if (scripted_[d]) continue;
     const double md = m[d / 3];
     const double step = h * h * gradient_[d] / md;  // h²M⁻¹∇E
     const double midpoint = 0.5 * (older[d] + predicted[d] + step);

@@ -206,6 +206,8 @@ class LevelSimulation {
   Inertia* penalty_ = nullptr;             // owned by problem_, null without consistency penalty
   HandleTargets finest_handles_;           // the finest level's handles, held exactly by proxy_
   Vector x_, v_, x_previous_, script_target_, script_step_, gradient_;
+  Vector carried_step_;         // a step's script change at rotation supports' carried DOFs
+  std::vector<bool> scripted_;  // DOFs the scripts move (prescribed or carried)
   int steps_taken_ = 0;
   double length_ = 1.0;
   bool fit_to_start_ = false;  // offsets or strain limits fitted to a start or to prescribed motion

@@ -175,6 +175,25 @@ static void test_handle_reaction(void) {
   CHECK_ERROR(ps_sim_set_handle_axes(sim, 3, PS_AXIS_Y), PS_ERROR_OUT_OF_RANGE,
               ps_sim_last_error(sim), "handle 3");
   CHECK(ps_sim_set_handle_axes(sim, 0, PS_AXIS_ALL) == PS_OK);
+  /* A rotation support holding the top edge's height and orientation, free in x and z: the
+   * cloth hangs as before (it is symmetric), the support still carries the weight in y and
+   * nothing along its free translation. */
+  CHECK_ERROR(ps_sim_set_handle_support(sim, 0, 7, PS_AXIS_Y), PS_ERROR_INVALID_ARGUMENT,
+              ps_sim_last_error(sim), "ps_support");
+  CHECK_ERROR(ps_sim_set_handle_support(sim, 0, PS_SUPPORT_POSITION, 0), PS_ERROR_INVALID_SCENE,
+              ps_sim_last_error(sim), "axes");
+  CHECK(ps_sim_set_handle_support(sim, 0, PS_SUPPORT_ROTATION, PS_AXIS_Y) == PS_OK);
+  int32_t equilibrium = 0;
+  CHECK(ps_sim_settle(sim, 5, &equilibrium) == PS_OK && equilibrium);
+  CHECK(ps_sim_get_handle_reaction(sim, 0, 0, &r) == PS_OK);
+  CHECK(fabs(r.force[1] - weight) < 1e-6 * weight);
+  CHECK(fabs(r.force[0]) < 1e-9 * weight && fabs(r.force[2]) < 1e-9 * weight);
+  double top_row[3 * 441];
+  size_t got = 0;
+  CHECK(ps_sim_get_positions(sim, 0, top_row, 3 * 441, &got) == PS_OK);
+  for (int32_t i = 0; i < 21; ++i) /* the rest position of vertex 420 + i is (i / 20, 1, 0) */
+    CHECK(fabs(top_row[3 * (420 + i)] - i / 20.0) < 1e-9 &&
+          fabs(top_row[3 * (420 + i) + 2]) < 1e-9);
   ps_sim_destroy(sim);
   ps_hierarchy_destroy(h);
 }

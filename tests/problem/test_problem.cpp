@@ -1,6 +1,8 @@
 // Problem: reduced gradient and Hessian against a dense assembly done independently here.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/error.hpp"
 #include "energy/changing_pattern_term.hpp"
 #include "energy/gravity.hpp"
@@ -62,6 +64,75 @@ TEST(Problem, GradientIsZeroOnFixedDofsAndMatchesFiniteDifferences) {
     xm[d] -= 1e-6;
     EXPECT_NEAR(g[d], (problem.value(xp) - problem.value(xm)) / 2e-6, 1e-6) << "dof " << d;
   }
+}
+
+namespace {
+
+/// E(x₀ + S z) for the 12-DOF problem with DOFs {3, 6} and {5, 8, 11} tied and DOF 0 fixed:
+/// S maps the 9 unknowns (free DOFs in order, a group at its smallest DOF) to the DOFs.
+Eigen::MatrixXd tied_selection() {
+  const std::vector<int> unknown = {-1, 0, 1, 2, 3, 4, 2, 5, 4, 6, 7, 4};  // per DOF
+  Eigen::MatrixXd s = Eigen::MatrixXd::Zero(12, 8);
+  for (int d = 0; d < 12; ++d)
+    if (unknown[d] >= 0) s(d, unknown[d]) = 1.0;
+  return s;
+}
+
+}  // namespace
+
+TEST(Problem, SharedDofsReduceToSelectionTransposeTimesGradientAndHessian) {
+  std::vector<bool> fixed(12, false);
+  fixed[0] = true;
+  Problem problem(12);
+  problem.add_term(std::make_unique<SpringTerm>(
+      std::vector<std::array<int, 2>>{{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}}, 4, 3.0));
+  problem.add_term(std::make_unique<Inertia>(Eigen::Vector4d(1, 2, 3, 4), 0.1));
+  problem.set_fixed_dofs(fixed);
+  problem.set_shared_dofs({{3, 6}, {5, 8, 11}});
+  problem.finalize();
+  ASSERT_EQ(problem.num_free(), 8);
+  const Eigen::MatrixXd s = tied_selection();
+  const Vector x = Vector::Random(12);
+  // Independent check: central differences of z ↦ E(x + S z) at z = 0.
+  const auto energy_at = [&](const Vector& z) { return problem.value(Vector(x + s * z)); };
+  Vector g_full, g;
+  problem.gradient(x, g_full);
+  problem.restrict_to_free(g_full, g);
+  const double eps = 1e-3;
+  Eigen::MatrixXd expected_hessian(8, 8);
+  for (int i = 0; i < 8; ++i) {
+    const Vector ei = eps * Vector::Unit(8, i);
+    EXPECT_NEAR(g[i], (energy_at(ei) - energy_at(-ei)) / (2 * eps), 1e-4 * (1 + std::abs(g[i])))
+        << "unknown " << i;
+    for (int j = 0; j < 8; ++j) {
+      const Vector ej = eps * Vector::Unit(8, j);
+      expected_hessian(i, j) =
+          (energy_at(ei + ej) - energy_at(ei - ej) - energy_at(-ei + ej) + energy_at(-ei - ej)) /
+          (4 * eps * eps);
+    }
+  }
+  const Eigen::MatrixXd lower = Eigen::MatrixXd(problem.hessian(x, false));
+  const Eigen::MatrixXd full =
+      lower + lower.transpose() - Eigen::MatrixXd(lower.diagonal().asDiagonal());
+  EXPECT_LT((full - expected_hessian).cwiseAbs().maxCoeff(),
+            1e-5 * expected_hessian.cwiseAbs().maxCoeff());
+  // A step moves every DOF of a group alike and leaves the fixed one.
+  Vector step;
+  problem.expand_from_free(Vector::LinSpaced(8, 1, 8), step);
+  EXPECT_EQ(step[0], 0.0);
+  EXPECT_EQ(step[3], step[6]);
+  EXPECT_EQ(step[5], step[8]);
+  EXPECT_EQ(step[5], step[11]);
+  EXPECT_TRUE(step.isApprox(s * Vector::LinSpaced(8, 1, 8)));
+}
+
+TEST(Problem, RejectsSharedDofsThatAreFixedRepeatedOrOutOfRange) {
+  std::vector<bool> fixed(12, false);
+  fixed[0] = true;
+  Problem problem = make_problem(fixed);
+  EXPECT_THROW(problem.set_shared_dofs({{0, 1}}), Error);
+  EXPECT_THROW(problem.set_shared_dofs({{1, 2}, {2, 3}}), Error);
+  EXPECT_THROW(problem.set_shared_dofs({{1, 12}}), Error);
 }
 
 TEST(Problem, CountsEvaluationsPerTerm) {

@@ -67,3 +67,43 @@ def test_bad_axes_and_handles_are_refused():
             sim.handle_reaction(0)  # no solve yet
         with pytest.raises(progsim.OutOfRangeError):
             sim.handle_reaction(5)
+
+
+def _guided_strip(support_in_scene: bool) -> dict:
+    """The propped strip with its last two columns on a rotation support (free translation)."""
+    scene = _propped_strip("z")
+    dx = LENGTH / 40
+    end = {"body": 0, "box": {"min": [LENGTH - dx - 1e-9, -1, -1], "max": [1, 1, 1]}}
+    if support_in_scene:
+        end.update({"support": "rotation", "axes": ""})
+    scene["handles"][1] = end
+    return scene
+
+
+def test_a_rotation_support_set_in_code_equals_the_scene_key():
+    weight = DENSITY * THICKNESS * LENGTH * WIDTH * G
+    with progsim.Simulation.from_scene(_guided_strip(True)) as keyed, progsim.Simulation.from_scene(
+        _guided_strip(False)
+    ) as coded:
+        coded.set_handle_support(1, "rotation")
+        keyed.step_preview(1)
+        coded.step_preview(1)
+        np.testing.assert_array_equal(keyed.positions(), coded.positions())
+        clamp, guided = coded.handle_reaction(0), coded.handle_reaction(1)
+        # the guided end translates freely: the clamp carries the whole weight
+        assert clamp.force[2] == pytest.approx(weight, rel=1e-6)
+        assert np.linalg.norm(guided.force) < 1e-4 * weight  # to the solve's tolerance
+        assert abs(guided.moment[1]) > 0.01 * weight * LENGTH  # it holds the end's slope
+        end = coded.positions()[-2:]  # the last two columns' corner vertices, flat at rest
+        assert end[0, 2] < -1e-4  # the end sank ...
+        assert end[0, 2] == pytest.approx(end[1, 2], abs=1e-12)  # ... keeping its slope
+
+
+def test_bad_supports_are_refused():
+    with progsim.Simulation.from_scene(_propped_strip("z")) as sim:
+        with pytest.raises(progsim.InvalidArgumentError, match="support"):
+            sim.set_handle_support(1, "hinge")
+        with pytest.raises(progsim.InvalidSceneError, match="axes"):
+            sim.set_handle_support(1, "position", "")
+        with pytest.raises(progsim.OutOfRangeError):
+            sim.set_handle_support(4, "rotation")

@@ -92,6 +92,14 @@ INTERPOLATIONS: Dict[str, int] = {
     "smooth": lib.PS_INTERPOLATION_SMOOTH,
 }
 
+#: What a handle holds (``ps_support``): ``position`` (each vertex's prescribed coordinates,
+#: the default) or ``rotation`` (the group turns with its script and translates freely along
+#: the coordinates outside its axes).
+SUPPORTS: Dict[str, int] = {
+    "position": lib.PS_SUPPORT_POSITION,
+    "rotation": lib.PS_SUPPORT_ROTATION,
+}
+
 #: What drives a simulation (``ps_sim_kind``): one level is ``direct``; several levels are
 #: ``psq`` (quasistatic) or ``progressive_dynamics`` (dynamic: a progressive animation), and
 #: on a solid's hierarchy ``volumetric_dynamics`` (dynamic: VPD, a progressive animation over
@@ -309,9 +317,10 @@ class HandleReaction:
     point: np.ndarray  #: float64 (3,), m, the centroid of the handle's vertices
 
 
-def _handle_axes(axes: str) -> int:
-    """``ps_axis`` bits of a string of distinct letters from ``"xyz"``."""
-    if not isinstance(axes, str) or not axes or len(set(axes)) != len(axes):
+def _handle_axes(axes: str, allow_none: bool = False) -> int:
+    """``ps_axis`` bits of a string of distinct letters from ``"xyz"`` (``""`` only where
+    ``allow_none``)."""
+    if not isinstance(axes, str) or (not axes and not allow_none) or len(set(axes)) != len(axes):
         raise InvalidArgumentError(f"axes must be distinct letters from 'xyz', got {axes!r}")
     bits = 0
     for letter in axes:
@@ -1011,6 +1020,32 @@ class Simulation(NativeObject):
             InvalidArgumentError: ``axes`` is empty or has letters other than x, y, z.
         """
         self._call(lib.ps_sim_set_handle_axes, int32_value(handle, "handle"), _handle_axes(axes))
+
+    def set_handle_support(self, handle: int, support: str, axes: str = "") -> None:
+        """Makes handle ``handle`` a ``support`` prescribing the coordinates in ``axes`` from
+        the next step on (scene keys ``handles[i].support`` and ``handles[i].axes``).
+
+        Args:
+            handle: handle index, ``0 <= handle < num_handles``.
+            support: ``"position"`` (each vertex's prescribed coordinates; ``axes`` non-empty)
+                or ``"rotation"`` (the group turns with its script, held still by a static one,
+                and translates freely along the coordinates outside ``axes``; two or more rows
+                of vertices hold a slope; single-level simulations only).
+            axes: distinct letters from ``"xyz"``; ``""`` (the default) only for a rotation
+                support: a free translation.
+
+        Raises:
+            OutOfRangeError: no such handle.
+            InvalidArgumentError: an unknown support or bad letters.
+            InvalidSceneError: no axis on a position support.
+            UnsupportedError: a rotation support on several levels.
+        """
+        self._call(
+            lib.ps_sim_set_handle_support,
+            int32_value(handle, "handle"),
+            _choice(SUPPORTS, support, "support"),
+            _handle_axes(axes, allow_none=True),
+        )
 
     def handle_reaction(self, handle: int, level: Optional[int] = None) -> HandleReaction:
         """The force and moment handle ``handle``'s support applied after the last solve on

@@ -575,6 +575,28 @@ impl Interpolation {
     }
 }
 
+/// What a handle holds of its vertices (the C `ps_support`). Scene key `handles[i].support`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Support {
+    /// Each vertex's prescribed coordinates follow the script, the others are free per vertex
+    /// (a clamp, a roller, a symmetry plane): `PS_SUPPORT_POSITION`, the default.
+    #[default]
+    Position,
+    /// The group moves rigidly: it turns as its script turns it (held still by a static script)
+    /// and translates freely along the coordinates outside its axes (`PS_SUPPORT_ROTATION`).
+    /// Two or more rows of a shell's vertices hold a slope. Single-level simulations only.
+    Rotation,
+}
+
+impl Support {
+    pub(crate) fn to_raw(self) -> sys::ps_support {
+        match self {
+            Support::Position => sys::PS_SUPPORT_POSITION,
+            Support::Rotation => sys::PS_SUPPORT_ROTATION,
+        }
+    }
+}
+
 /// The world coordinates a handle prescribes (the C `ps_axis` bits); the others are free: a
 /// roller or a symmetry plane. Scene key `handles[i].axes`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -590,6 +612,8 @@ pub struct Axes {
 impl Axes {
     /// All three coordinates: a clamp (every handle's default).
     pub const ALL: Axes = Axes { x: true, y: true, z: true };
+    /// None: a rotation support's free translation.
+    pub const NONE: Axes = Axes { x: false, y: false, z: false };
 
     /// The C `ps_axis` bits.
     pub fn bits(self) -> u32 {

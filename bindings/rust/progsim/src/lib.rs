@@ -65,7 +65,7 @@ pub use accuracy::{Accuracy, AccuracyDef, AccuracyRow, Method};
 pub use animation::{DynamicLevelStats, Frame, Prediction, SimulationKind, StepStats};
 pub use def::{
     Axes, Effect, Effects, HandleMotion, HandleReaction, HierarchyDef, Interpolation, Keyframe,
-    LevelStats, Mode, RefinementStats, SimulationDef, StrainCorrectionStats,
+    LevelStats, Mode, RefinementStats, SimulationDef, StrainCorrectionStats, Support,
 };
 pub use error::{Error, Result, Status};
 pub use hierarchy::Hierarchy;

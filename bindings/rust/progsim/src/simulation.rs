@@ -16,6 +16,7 @@ use crate::{
     c_handle, c_level, c_path, c_string, check_version, count_from, not_in_callback, read_triples,
     Axes, CallbackScope, Effect, Effects, Error, Ground, HandleMotion, HandleReaction, Hierarchy,
     Interpolation, Keyframe, LevelStats, Load, Mode, Obstacle, Result, SimulationDef, Status,
+    Support,
 };
 
 /// A simulation of one [`Hierarchy`]: preview steps at the current level (starting at level
@@ -329,6 +330,29 @@ impl<'h> Simulation<'h> {
         let handle = c_handle(handle)?;
         // SAFETY: live simulation.
         let status = unsafe { sys::ps_sim_set_handle_axes(raw, handle, axes.bits()) };
+        self.check(status)
+    }
+
+    /// Makes handle `handle` a `support` prescribing the coordinates in `axes` from the next
+    /// step on ([`Support::Rotation`]: the group turns with its script and translates freely
+    /// along the other coordinates; [`Axes::NONE`] allowed only there).
+    ///
+    /// # Errors
+    /// [`Status::OutOfRange`] if the handle does not exist; [`Status::InvalidScene`] for no
+    /// axis on a position support; [`Status::Unsupported`] for a rotation support on several
+    /// levels.
+    pub fn set_handle_support(
+        &mut self,
+        handle: usize,
+        support: Support,
+        axes: Axes,
+    ) -> Result<()> {
+        let raw = self.handle()?;
+        let handle = c_handle(handle)?;
+        // SAFETY: live simulation.
+        let status = unsafe {
+            sys::ps_sim_set_handle_support(raw, handle, support.to_raw() as i32, axes.bits())
+        };
         self.check(status)
     }
 

@@ -1,7 +1,7 @@
 //! Partial supports and handle reactions through the safe wrapper: a propped stiff strip whose
 //! roller carries the beam-theory share of the weight and no horizontal load.
 
-use progsim::{Axes, Simulation, Status};
+use progsim::{Axes, Simulation, Status, Support};
 
 const LENGTH: f64 = 0.5;
 const WIDTH: f64 = 0.05;
@@ -55,4 +55,26 @@ fn a_roller_carries_the_prop_share_and_no_horizontal_load() {
     let none = Axes { x: false, y: false, z: false };
     assert_eq!(sim.set_handle_axes(1, none).unwrap_err().code, Status::InvalidScene);
     assert_eq!(sim.set_handle_axes(7, Axes::ALL).unwrap_err().code, Status::OutOfRange);
+}
+
+#[test]
+fn a_rotation_support_free_to_translate_leaves_the_weight_to_the_clamp() {
+    // The roller (one column) switched to a rotation support free to translate: it keeps the
+    // column straight but supplies no force, so the clamp carries the whole weight.
+    let weight = DENSITY * THICKNESS * LENGTH * WIDTH * G;
+    let mut sim = Simulation::from_scene(&propped_strip(), None).expect("valid scene");
+    sim.set_handle_support(1, Support::Rotation, Axes::NONE).expect("a guided end");
+    sim.step_preview(1).expect("one load step");
+    let clamp = sim.handle_reaction(0, 0).expect("clamp reaction");
+    let guided = sim.handle_reaction(0, 1).expect("guided reaction");
+    assert!((clamp.force[2] - weight).abs() < 1e-6 * weight, "{}", clamp.force[2]);
+    assert!(guided.force.iter().all(|f| f.abs() < 1e-4 * weight), "{:?}", guided.force);
+    assert_eq!(
+        sim.set_handle_support(1, Support::Position, Axes::NONE).unwrap_err().code,
+        Status::InvalidScene
+    );
+    assert_eq!(
+        sim.set_handle_support(9, Support::Rotation, Axes::NONE).unwrap_err().code,
+        Status::OutOfRange
+    );
 }
