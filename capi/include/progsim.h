@@ -620,8 +620,9 @@ typedef enum ps_load_distribution {
 } ps_load_distribution;
 
 /**
- * A dead point or line load on a vertex group (scene key "loads"): a force, a moment, or both,
- * fixed in direction and size (potential −Σ f_i·x_i), grown linearly from 0 over `ramp`.
+ * A point or line load on a vertex group (scene key "loads"), grown linearly from 0 over `ramp`:
+ * a force and a moment fixed in direction and size (potential −Σ f_i·x_i), and a normal force
+ * that follows the surface (any of them together).
  * Fill with ps_load_def_init(), then change fields.
  */
 typedef struct ps_load_def {
@@ -638,6 +639,10 @@ typedef struct ps_load_def {
    *  with PS_LOAD_PER_VERTEX), summing to zero, with moment `moment` about moment_axis. The
    *  group must not lie on one line along the axis. */
   double moment;
+  /** N along the unit vertex normals (the faces' winding), spread like the force, turning with
+   *  the surface: a follower load, re-aimed and solved again each step until its directions
+   *  hold still. Single-level simulations only. Default 0 (none). */
+  double normal_force;
   double ramp; /**< s, ≥ 0; default 0 (full load at once) */
   /** The group as a region instead (with num_vertices = 0): the body's vertices inside the
    *  axis-aligned box [box_min, box_max] (m, boundary included), each NULL or 3 doubles,

@@ -48,6 +48,7 @@ Load load_from_def(const ps_load_def& def, const Scene& scene) {
   load.distribution = distribution_from_enum(def.distribution);
   load.moment_axis = Vec3(def.moment_axis[0], def.moment_axis[1], def.moment_axis[2]);
   load.moment = def.moment;
+  load.normal_force = def.normal_force;
   load.ramp = def.ramp;
   return load;
 }

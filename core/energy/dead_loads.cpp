@@ -41,6 +41,13 @@ void DeadLoads::add_gradient(const Vector&, Vector& g) const {
   }
 }
 
+void DeadLoads::set_forces(std::size_t k, const Positions& forces) {
+  if (forces.rows() != loads_.at(k).forces.rows() || forces.cols() != 3)
+    fail(Status::invalid_argument, "DeadLoads: load " + std::to_string(k) + " needs " +
+                                       std::to_string(loads_[k].forces.rows()) + " × 3 forces");
+  loads_[k].forces = forces;
+}
+
 Vec3 DeadLoads::total_force() const {
   Vec3 total = Vec3::Zero();
   for (std::size_t k = 0; k < loads_.size(); ++k)

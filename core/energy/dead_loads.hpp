@@ -31,6 +31,8 @@ class DeadLoads : public EnergyTerm {
 
   /// Scales load k (in the order given) by s (1: its full force).
   void set_factor(std::size_t k, double s) { factors_.at(k) = s; }
+  /// Replaces load k's full forces (same vertices: |vertices| × 3).
+  void set_forces(std::size_t k, const Positions& forces);
   std::size_t num_loads() const { return loads_.size(); }
   /// Σ_k s_k Σ_j f_kj (N): the total force now.
   Vec3 total_force() const;

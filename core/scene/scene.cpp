@@ -149,6 +149,23 @@ void validate_handle(const Scene& scene, std::size_t h) {
 /// Body index, a non-empty group of vertices in range, finite values, a ramp ≥ 0 and, with a
 /// moment, a group that can carry it (couple_forces with equal weights: whether it can does not
 /// depend on the weights).
+/// A follower load: a finite force, a direct simulation, and a face on every vertex (its normal).
+void validate_follower(const Scene& scene, const Load& load, const std::string& where) {
+  if (!std::isfinite(load.normal_force))
+    fail(Status::invalid_scene, where + ".normal_force has a non-finite value");
+  if (scene.progressive.enabled())
+    fail(Status::unsupported, where + ".normal_force: a follower load needs a direct simulation " +
+                                  "(progressive levels carry dead loads only)");
+  const Faces& faces = scene.bodies[load.body].mesh.faces;
+  std::vector<bool> on_face(scene.bodies[load.body].mesh.num_vertices(), false);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) on_face[faces(f, c)] = true;
+  for (int v : load.vertices)
+    if (!on_face[v])
+      fail(Status::invalid_scene, where + ".normal_force: vertex " + std::to_string(v) +
+                                      " lies on no face, so it has no normal");
+}
+
 void validate_load(const Scene& scene, std::size_t k) {
   const Load& load = scene.loads[k];
   const std::string where = "loads[" + std::to_string(k) + "]";
@@ -164,6 +181,7 @@ void validate_load(const Scene& scene, std::size_t k) {
     fail(Status::invalid_scene, where + ".moment.axis must be non-zero");
   if (!std::isfinite(load.ramp) || !(load.ramp >= 0.0))
     fail(Status::invalid_scene, where + ".ramp must be a finite number >= 0");
+  if (load.normal_force != 0.0) validate_follower(scene, load, where);
   couple_forces(points, Eigen::VectorXd::Ones(points.rows()), load.moment_axis, load.moment,
                 where + ".moment");
 }

@@ -174,8 +174,9 @@ enum class LoadDistribution {
   per_vertex,  ///< f_i = F: the force acts on every vertex of the group
 };
 
-/// A dead (fixed direction and size) point or line load on a vertex group of one body: a
-/// force, a moment (a force couple) or both, grown linearly from 0 over `ramp`.
+/// A point or line load on a vertex group of one body, grown linearly from 0 over `ramp`: a dead
+/// (fixed direction and size) force, a dead moment (a force couple), a follower force along the
+/// surface normal, or any of them together.
 struct Load {
   int body = 0;               ///< index into Scene::bodies
   std::vector<int> vertices;  ///< vertex indices within the body's mesh
@@ -185,6 +186,9 @@ struct Load {
   /// N·m: the moment M a of a couple on the group (its forces sum to zero), weighted like the
   /// force (per_vertex: equally); 0: none.
   double moment = 0.0;
+  /// N along the unit vertex normals (the faces' winding), spread like the force, following the
+  /// surface as it turns (FollowerLoads); 0: none. Direct simulations only.
+  double normal_force = 0.0;
   double ramp = 0.0;  ///< s; the load grows linearly from 0 over this time (0: at once)
   std::optional<VertexBox> region;  ///< as Handle::region
 };

@@ -445,11 +445,13 @@ Handle handle(const Json& j, const std::vector<Body>& bodies, const std::string&
 }
 
 /// A load: {"body", "vertices"/"box", "force", "distribution", "moment": {"axis", "magnitude"},
-/// "ramp"}, with a force, a moment or both.
+/// "normal_force", "ramp"}, with a force, a moment, a normal force or several.
 Load load(const Json& j, const std::vector<Body>& bodies, const std::string& where) {
-  expect_keys(j, where, {"body", "vertices", "box", "force", "distribution", "moment", "ramp"});
-  if (!j.contains("force") && !j.contains("moment"))
-    scene_error(where, "needs a 'force', a 'moment' or both");
+  expect_keys(
+      j, where,
+      {"body", "vertices", "box", "force", "distribution", "moment", "normal_force", "ramp"});
+  if (!j.contains("force") && !j.contains("moment") && !j.contains("normal_force"))
+    scene_error(where, "needs a 'force', a 'moment', a 'normal_force' or several");
   Load l;
   VertexSelection selection = vertex_selection(j, bodies, where);
   l.body = selection.body;
@@ -467,6 +469,7 @@ Load load(const Json& j, const std::vector<Body>& bodies, const std::string& whe
     l.moment_axis = vec3(require(m, "axis", at), at + ".axis");
     l.moment = number(require(m, "magnitude", at), at + ".magnitude");
   }
+  l.normal_force = number_or(j, "normal_force", 0.0, where);
   l.ramp = number_or(j, "ramp", 0.0, where);
   return l;
 }

@@ -7,6 +7,7 @@
 #include "common/timer.hpp"
 #include "energy/consistency_penalty.hpp"
 #include "energy/dead_loads.hpp"
+#include "energy/follower_loads.hpp"
 #include "energy/gravity.hpp"
 #include "energy/inertia.hpp"
 #include "energy/pressure.hpp"
@@ -29,6 +30,16 @@ Scene validated(Scene scene) {
   validate_scene(scene);
   return scene;
 }
+
+/// Re-aims of follower loads (each followed by a solve) after a step's first solve; a step
+/// whose directions still turn by more than the tolerance after them reports the last count.
+constexpr int kMaxFollowerLags = 50;
+
+/// Follower loads' directions have settled when no vertex normal turned by more than this (rad)
+/// since the last solve, or by more than the solver's relative tolerance if that is larger: a
+/// relative force error far below the discretisation's, and above the turn a converged solve's
+/// round-off makes (a 40-cell strip solved to 1e-9 turned its normals by 1e-9 to 1e-8 rad).
+constexpr double kFollowerAngleTolerance = 1e-6;
 
 /// Rounds of CCD-safe scripted motion (each followed by a solve) before a step gives up.
 constexpr int kMaxScriptRounds = 50;
@@ -185,12 +196,21 @@ void LevelSimulation::add_elastics(Problem& problem, RampedTerms& ramped) const 
   if (!scene_.loads.empty())
     ramped.loads =
         &problem.add_term(std::make_unique<DeadLoads>(level_loads(), model_.rest.num_vertices()));
+  if (!has_follower_loads(scene_)) return;
+  if (!level_.is_finest())
+    fail(Status::unsupported, "a follower load (normal_force) needs a direct simulation: level " +
+                                  std::to_string(level_.level) + " is a coarse level");
+  ramped.followers = &problem.add_term(std::make_unique<FollowerLoads>(
+      normal_loads(scene_, model_), model_.rest.faces, model_.rest.num_vertices()));
 }
 
 void LevelSimulation::add_proxy_elastics(Problem& problem, RampedTerms& ramped) const {
   // A dynamic preview's gravity acts on the prolonged masses M_l its inertia uses: through the
   // prolongation it would also act on the offsets a(x), a torque that makes a free fall deform.
   const bool dynamic = scene_.mode == StepMode::dynamic;
+  if (has_follower_loads(scene_))
+    fail(Status::unsupported, "a follower load (normal_force) needs a direct simulation: level " +
+                                  std::to_string(level_.level) + " is a preview level");
   if (dynamic && scene_.effects.has(Effect::gravity))
     ramped.gravity =
         &problem.add_term(std::make_unique<Gravity>(model_.vertex_masses, scene_.gravity));
@@ -262,6 +282,8 @@ void LevelSimulation::apply_ramps(double t) {
     ramped_.gravity->set_acceleration(ramp_factor(t, scene_.gravity_ramp) * scene_.gravity);
   for (std::size_t k = 0; ramped_.loads && k < scene_.loads.size(); ++k)
     ramped_.loads->set_factor(k, ramp_factor(t, scene_.loads[k].ramp));
+  for (std::size_t k = 0; ramped_.followers && k < scene_.loads.size(); ++k)
+    ramped_.followers->set_factor(k, ramp_factor(t, scene_.loads[k].ramp));
 }
 
 double LevelSimulation::advance_scripts(double t, double decrement_scale, NewtonReport& report) {
@@ -331,6 +353,19 @@ bool LevelSimulation::carry_shell(const Positions& obstacle_target) {
       any = true;
     }
   return any;
+}
+
+int LevelSimulation::follow_normals(double decrement_scale, NewtonReport& report) {
+  const double settled = std::max(kFollowerAngleTolerance, scene_.solver.tolerance);
+  int lags = 0;
+  while (lags < kMaxFollowerLags && ramped_.followers->relax(x_) > settled) {
+    ++lags;
+    const NewtonReport again =
+        solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_);
+    accumulate(report, again);
+    if (again.stop != NewtonStop::converged) break;
+  }
+  return lags;
 }
 
 void LevelSimulation::fit_limits_to_prescribed_motion() {
@@ -433,11 +468,13 @@ StepRecord LevelSimulation::solve_at(double t, bool new_step, const StepTargets&
   }
   apply_ramps(t);
   pin_finest_handles(t);
+  if (ramped_.followers) ramped_.followers->aim(x_);
   StepRecord record;
   const double decrement_scale = dynamic ? h : 1.0;
   record.script_reached = advance_scripts(t, decrement_scale, record.newton);
   accumulate(record.newton,
              solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_));
+  if (ramped_.followers) record.follower_lags = follow_normals(decrement_scale, record.newton);
   if (fit_to_start_) restore_fitted(record);
   record.change_rms = (x_ - x_previous_).norm() / std::sqrt(x_.size() / 3.0);
   record.equilibrium =

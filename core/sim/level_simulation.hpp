@@ -18,6 +18,7 @@
 
 namespace progsim {
 
+class FollowerLoads;
 class Gravity;
 class Inertia;
 class Pressure;
@@ -143,6 +144,7 @@ class LevelSimulation {
     std::vector<std::pair<Pressure*, int>> pressures;  ///< (term, body)
     Gravity* gravity = nullptr;                        ///< null without gravity
     DeadLoads* loads = nullptr;                        ///< null without loads
+    FollowerLoads* followers = nullptr;                ///< null without a normal force
   };
   /// Membrane, bending, gravity, pressure and loads: direct, or through the prolongation.
   void add_elastics(Problem& problem, RampedTerms& ramped) const;
@@ -152,6 +154,9 @@ class LevelSimulation {
   /// One solve at time t (a new step when advancing, the same loads otherwise) toward
   /// `targets` (empty: implicit Euler on the level alone).
   StepRecord solve_at(double t, bool new_step, const StepTargets& targets = {});
+  /// Follower loads: re-aims them at x_ and solves again until their directions hold still
+  /// (FollowerLoads' fixed point); returns the re-aims after the first solve.
+  int follow_normals(double decrement_scale, NewtonReport& report);
   /// Membrane, bending, pressure and loads through the prolongation; gravity through it too for
   /// a quasistatic preview, on the level's prolonged masses for a dynamic one.
   void add_proxy_elastics(Problem& problem, RampedTerms& ramped) const;

@@ -41,6 +41,7 @@ std::string to_json_line(const StepRecord& r) {
   if (r.friction_contacts) line["friction_contacts"] = *r.friction_contacts;
   if (r.max_stretch) line["max_stretch"] = *r.max_stretch;
   if (r.wind) line["wind"] = wind_json(*r.wind);
+  if (r.follower_lags) line["follower_lags"] = *r.follower_lags;
   if (r.motion) line["motion"] = motion_json(*r.motion);
   if (!r.reactions.empty()) line["reactions"] = reactions_json(r.reactions);
   return line.dump();

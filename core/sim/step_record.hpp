@@ -56,6 +56,8 @@ struct StepRecord {
   std::optional<double> max_stretch;
   /// With the wind effect: the wind and its force.
   std::optional<WindRecord> wind;
+  /// With follower loads: how often the step re-aimed them along the normals and solved again.
+  std::optional<int> follower_lags;
   /// Fraction of the handles' and obstacles' scripted motion reached this step (1: all; less
   /// when contact kept them from reaching it safely).
   double script_reached = 1.0;

@@ -8,7 +8,8 @@
 #include "check.h"
 
 /* A 0.4 m × 0.1 m strip of 8 × 2 quads (27 vertices) clamped on its first two columns, a tip
- * force spread by area and a couple about y on the last two columns, ramped over two steps. */
+ * force and a follower (normal) force spread by area and a couple about y on the last two
+ * columns, ramped over two steps. */
 static const char* const kLoadedStrip =
     "{ \"simulation\": { \"mode\": \"quasistatic\" },"
     "  \"effects\": [\"membrane\", \"bending\"],"
@@ -18,7 +19,7 @@ static const char* const kLoadedStrip =
     "  \"handles\": [ { \"body\": 0, \"vertices\": [0, 1, 9, 10, 18, 19] } ],"
     "  \"loads\": ["
     "    { \"body\": 0, \"vertices\": [8, 17, 26], \"force\": [0, 0, -0.002],"
-    "      \"distribution\": \"area\" },"
+    "      \"normal_force\": -0.001, \"distribution\": \"area\" },"
     "    { \"body\": 0, \"vertices\": [7, 8, 16, 17, 25, 26], \"distribution\": \"per_vertex\","
     "      \"moment\": { \"axis\": [0, 1, 0], \"magnitude\": 1e-4 }, \"ramp\": 0.02 } ] }";
 
@@ -42,6 +43,7 @@ static ps_sim* strip_in_code(const ps_hierarchy* h) {
   tip.vertices = kTip;
   tip.num_vertices = 3;
   tip.force[2] = -0.002;
+  tip.normal_force = -0.001;
   tip.distribution = PS_LOAD_BY_AREA;
   int32_t index = -1;
   CHECK(ps_sim_add_load(sim, &tip, &index) == PS_OK && index == 0);

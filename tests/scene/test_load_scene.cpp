@@ -163,7 +163,8 @@ TEST(LoadScene, MalformedJsonLoadsAreRefused) {
   };
   refused(R"("distribution": "area")", R"("distribution": "volume")",
           {"loads[0].distribution", "volume", "per_vertex"});
-  refused(R"("force": [0, 0, -0.02], )", "", {"loads[0]", "'force', a 'moment' or both"});
+  refused(R"("force": [0, 0, -0.02], )", "",
+          {"loads[0]", "'force', a 'moment', a 'normal_force' or several"});
   refused(R"("force": [0, 0, -0.02])", R"("force": [0, "a", 0])", {"loads[0].force[1]"});
   refused(R"("magnitude": 0.001)", R"("size": 0.001)", {"loads[1].moment", "size"});
   refused(R"("min": [0.34, -1, -1])", R"("min": [2, -1, -1])", {"loads[1]", "selects no"});

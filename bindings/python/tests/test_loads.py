@@ -9,7 +9,8 @@ import pytest
 import progsim
 
 # A 0.4 m × 0.1 m strip of 8 × 2 quads (27 vertices) clamped on its first two columns, a tip
-# force spread by area and a couple about y on its last two columns, ramped over two steps.
+# force and a follower (normal) force spread by area and a couple about y on its last two
+# columns, ramped over two steps.
 LOADED_STRIP = {
     "simulation": {"mode": "quasistatic"},
     "effects": ["membrane", "bending"],
@@ -22,7 +23,13 @@ LOADED_STRIP = {
     ],
     "handles": [{"body": 0, "vertices": [0, 1, 9, 10, 18, 19]}],
     "loads": [
-        {"body": 0, "vertices": [8, 17, 26], "force": [0, 0, -0.002], "distribution": "area"},
+        {
+            "body": 0,
+            "vertices": [8, 17, 26],
+            "force": [0, 0, -0.002],
+            "normal_force": -0.001,
+            "distribution": "area",
+        },
         {
             "body": 0,
             "vertices": [7, 8, 16, 17, 25, 26],
@@ -44,7 +51,7 @@ def strip_in_code(hierarchy):
         youngs_modulus=1e9,
         pinned=[0, 1, 9, 10, 18, 19],
     )
-    assert sim.add_load(TIP, force=(0, 0, -0.002), distribution="area") == 0
+    assert sim.add_load(TIP, force=(0, 0, -0.002), normal_force=-0.001, distribution="area") == 0
     index = sim.add_load(
         END, moment=1e-4, moment_axis=(0, 1, 0), distribution="per_vertex", ramp=0.02
     )

@@ -1270,14 +1270,16 @@ class Simulation(NativeObject):
         distribution: str = "mass",
         moment: float = 0.0,
         moment_axis: Optional[Sequence[float]] = None,
+        normal_force: float = 0.0,
         ramp: float = 0.0,
         body: int = 0,
     ) -> int:
-        """Adds a dead point or line load on a vertex group from the next step on.
+        """Adds a point or line load on a vertex group from the next step on.
 
-        The load is fixed in direction and size (potential −Σ f_i·x_i) and grows linearly
-        from 0 over ``ramp`` seconds of simulated time. Progressive simulations apply it on the
-        finest level's vertices, through the prolongation on coarse levels.
+        The force and moment are fixed in direction and size (potential −Σ f_i·x_i), the normal
+        force follows the surface; all grow linearly from 0 over ``ramp`` seconds of simulated
+        time. Progressive simulations apply dead loads on the finest level's vertices, through
+        the prolongation on coarse levels.
 
         Args:
             vertices: vertex indices within the body's mesh, shape (k,), k >= 1; or None with
@@ -1292,6 +1294,9 @@ class Simulation(NativeObject):
             moment: N·m; default 0. A couple of forces on the group (summing to zero) with this
                 moment about ``moment_axis``, weighted like the force.
             moment_axis: direction of the moment (any length > 0); default +z.
+            normal_force: N along the unit vertex normals (the faces' winding), spread like the
+                force and turning with the surface (a follower load); default 0.
+                Single-level simulations only.
             ramp: s, >= 0; default 0 (the full load at once).
             body: index of the scene's body; default 0.
 
@@ -1326,6 +1331,7 @@ class Simulation(NativeObject):
         definition.moment = real_value(moment, "moment")
         if moment_axis is not None:
             definition.moment_axis = three_floats(moment_axis, "moment_axis")
+        definition.normal_force = real_value(normal_force, "normal_force")
         definition.ramp = real_value(ramp, "ramp")
         out = ffi.new("int32_t*")
         self._call(lib.ps_sim_add_load, definition, out)

@@ -27,9 +27,9 @@ impl LoadDistribution {
     }
 }
 
-/// A dead point or line load on a vertex group: a force, a moment (a couple of forces summing to
-/// zero) or both, fixed in direction and size (potential −Σ f_i·x_i), grown linearly from 0 over
-/// `ramp` seconds of simulated time. The default is no load on no vertices.
+/// A point or line load on a vertex group, grown linearly from 0 over `ramp` seconds of simulated
+/// time: a force and a moment (a couple of forces summing to zero) fixed in direction and size
+/// (potential −Σ f_i·x_i), and a normal force that follows the surface. The default is no load on no vertices.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Load {
     /// Index of the scene's body; default 0.
@@ -46,6 +46,9 @@ pub struct Load {
     /// N·m; default 0 (none). Weighted like the force (equally with `PerVertex`); the group
     /// must not lie on one line along the axis.
     pub moment: f64,
+    /// N along the unit vertex normals (the faces' winding), spread like the force and turning
+    /// with the surface (a follower load); default 0 (none). Single-level simulations only.
+    pub normal_force: f64,
     /// s, ≥ 0; default 0 (the full load at once).
     pub ramp: f64,
     /// The group as a region instead of `vertices` (which must then be empty): the body's
@@ -65,6 +68,7 @@ impl Default for Load {
             distribution: LoadDistribution::Mass,
             moment_axis: raw.moment_axis,
             moment: raw.moment,
+            normal_force: raw.normal_force,
             ramp: raw.ramp,
             region: None,
         }
@@ -92,6 +96,7 @@ impl Load {
         raw.distribution = self.distribution.to_raw();
         raw.moment_axis = self.moment_axis;
         raw.moment = self.moment;
+        raw.normal_force = self.normal_force;
         raw.ramp = self.ramp;
         if let Some([min, max]) = &self.region {
             raw.box_min = min.as_ptr();
@@ -109,6 +114,7 @@ mod tests {
     fn defaults_are_the_c_library_defaults() {
         let load = Load::default();
         assert_eq!((load.body, load.moment, load.ramp), (0, 0.0, 0.0));
+        assert_eq!(load.normal_force, 0.0);
         assert_eq!(load.moment_axis, [0.0, 0.0, 1.0]);
         assert_eq!(load.distribution, LoadDistribution::Mass);
         assert!(load.vertices.is_empty() && load.region.is_none());
@@ -125,6 +131,7 @@ mod tests {
             distribution: LoadDistribution::PerVertex,
             moment_axis: [0.0, 1.0, 0.0],
             moment: 4.0,
+            normal_force: -6.0,
             ramp: 0.5,
             region: Some([[-1.0, -2.0, -3.0], [1.0, 2.0, 3.0]]),
         };
@@ -136,5 +143,6 @@ mod tests {
         assert_eq!(raw.force, [1.0, 2.0, 3.0]);
         assert_eq!(raw.distribution, sys::PS_LOAD_PER_VERTEX);
         assert_eq!((raw.moment_axis, raw.moment, raw.ramp), ([0.0, 1.0, 0.0], 4.0, 0.5));
+        assert_eq!(raw.normal_force, -6.0);
     }
 }

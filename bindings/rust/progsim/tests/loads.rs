@@ -4,7 +4,8 @@
 use progsim::{Effect, Hierarchy, Load, LoadDistribution, Mode, Simulation, SimulationDef, Status};
 
 /// A 0.4 m × 0.1 m strip of 8 × 2 quads (27 vertices) clamped on its first two columns, a tip
-/// force spread by area and a couple about y on its last two columns, ramped over two steps.
+/// force and a follower (normal) force spread by area and a couple about y on its last two
+/// columns, ramped over two steps.
 const LOADED_STRIP: &str = r#"{
   "simulation": { "mode": "quasistatic" },
   "effects": ["membrane", "bending"],
@@ -13,7 +14,8 @@ const LOADED_STRIP: &str = r#"{
                 "material": { "youngs_modulus": 1e9 } } ],
   "handles": [ { "body": 0, "vertices": [0, 1, 9, 10, 18, 19] } ],
   "loads": [
-    { "body": 0, "vertices": [8, 17, 26], "force": [0, 0, -0.002], "distribution": "area" },
+    { "body": 0, "vertices": [8, 17, 26], "force": [0, 0, -0.002], "normal_force": -0.001,
+      "distribution": "area" },
     { "body": 0, "vertices": [7, 8, 16, 17, 25, 26], "distribution": "per_vertex",
       "moment": { "axis": [0, 1, 0], "magnitude": 1e-4 }, "ramp": 0.02 } ]
 }"#;
@@ -29,6 +31,7 @@ fn tip_force() -> Load {
     Load {
         vertices: vec![8, 17, 26],
         force: [0.0, 0.0, -0.002],
+        normal_force: -0.001,
         distribution: LoadDistribution::Area,
         ..Load::default()
     }
