@@ -23,8 +23,10 @@
 #include "scene/scene_json.hpp"
 #include "sim/level_simulation.hpp"
 #include "solve/newton_solver.hpp"
+#include "support/sze_strip.hpp"
 
 using namespace progsim;
+using namespace progsim::test_support;
 
 namespace {
 
@@ -234,9 +236,8 @@ TEST(BendingConvergence, ProgressiveLevelsUseTheSelectedModelUpToTheFinest) {
 
 namespace {
 
-/// Sze, Liu & Lo (2004) §3.1: a cantilever L = 10, b = 1, h = 0.1, E = 1.2e6, ν = 0 (E I =
-/// 100) under an end shear P up to P_max = 4, i.e. P L² / E I = 2 and 4.
-constexpr double kSzeLength = 10.0, kSzeWidth = 1.0, kSzeThickness = 0.1, kSzeModulus = 1.2e6;
+/// Sze, Liu & Lo (2004) §3.1: the strip (support/sze_strip.hpp, E I = 100) under an end shear
+/// P up to P_max = 4, i.e. P L² / E I = 2 and 4.
 constexpr double kSzeMaxLoad = 4.0;
 
 /// Tip displacements (−u, w) of Sze's cantilever at P = P_max/2 and P_max (two quasistatic
@@ -247,33 +248,15 @@ constexpr double kSzeMaxLoad = 4.0;
 /// L for mid-edge bending.
 std::array<Vec3, 2> sze_tip_displacements(int nx, BendingModel model) {
   const double a = kSzeLength / (nx - 0.5);
-  TriangleMesh mesh = make_grid(kSzeLength + 0.5 * a, kSzeWidth, nx, nx / 10);
-  mesh.vertices.col(0).array() -= 0.5 * a;
-  ShellMaterial m;
-  m.youngs_modulus = kSzeModulus;
-  m.poisson_ratio = 0.0;
-  m.thickness = kSzeThickness;
-  m.density = 1.0;
-  m.bending_model = model;
-  Scene scene;
-  scene.name = "sze_end_shear";
-  scene.mode = StepMode::quasistatic;
-  scene.time_step = 0.5;
-  scene.duration = 1.0;
-  scene.effects.enable(Effect::membrane);
-  scene.effects.enable(Effect::bending);
-  scene.solver.tolerance = 1e-9;
-  scene.solver.max_iterations = 500;
-  scene.bodies.push_back({"strip", mesh, m, 0.0, 0.0});
+  Scene scene = sze_strip_scene("sze_end_shear", -0.5 * a, kSzeLength, nx, model, 0.5);
+  const TriangleMesh& mesh = scene.bodies[0].mesh;
   Handle clamp;
+  clamp.vertices = sze_vertices_below(scene, a);
   Load shear;
   shear.force = Vec3(0, 0, -kSzeMaxLoad);
   shear.distribution = LoadDistribution::area;
   shear.ramp = 1.0;  // P = P_max t
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (mesh.vertices(v, 0) < a) clamp.vertices.push_back(v);
-    if (mesh.vertices(v, 0) > kSzeLength - 1e-9) shear.vertices.push_back(v);
-  }
+  shear.vertices = sze_vertices_above(scene, kSzeLength - 1e-9);
   scene.handles.push_back(clamp);
   scene.loads.push_back(shear);
   LevelSimulation sim(scene);
@@ -297,7 +280,7 @@ TEST(BendingConvergence, MidedgeCantileverUnderEndShearMatchesSzeBenchmark) {
   // Published (Sze, Liu & Lo 2004, Table 1, S4R 16 × 1 mesh): −u, w = 1.604, 4.933 at
   // P/P_max = 0.5 and 3.286, 6.698 at 1, asserted within 3 % (issue 31). Convergence is
   // measured against the inextensible elastica θ'' = −(P L²/E I) cos θ, θ(0) = 0, θ'(L) = 0
-  // (Mattiasson 1981's problem), solved by shooting with RK4 in tests/data/elastica_end_shear.py:
+  // (Mattiasson 1981's problem), solved by shooting with RK4 in tests/data/elastica.py:
   // 1.6064, 4.9346 and 3.2894, 6.6996.
   // Measured: mid-edge within 0.22 % of Sze at every size, its largest error against the
   // elastica 0.11 %, 0.03 %, 0.01 % at nx = 20, 40, 80; hinge 24-28 % long in −u at P_max/2.

@@ -1,59 +1,37 @@
 // Follower loads (issue 30 §2): a normal force that turns with the surface, against the
 // elastica of a cantilever under an end load that stays normal to its free end, computed
-// independently by tests/data/elastica_follower_end_load.py.
+// independently by tests/data/elastica.py.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
 #include "energy/follower_loads.hpp"
-#include "mesh/mesh_generators.hpp"
 #include "scene/scene_json.hpp"
 #include "sim/level_simulation.hpp"
 #include "support/expect_error.hpp"
+#include "support/sze_strip.hpp"
 
 using namespace progsim;
-using progsim::test_support::expect_error;
+using namespace progsim::test_support;
 
 namespace {
 
-/// Sze et al. 2004's strip (L = 10, b = 1, h = 0.1, E = 1.2e6, ν = 0: E I = 100).
-constexpr double kLength = 10.0, kWidth = 1.0, kThickness = 0.1, kModulus = 1.2e6;
-constexpr double kBendingStiffness = kModulus * kWidth * kThickness * kThickness * kThickness / 12;
-
-/// The strip with nx cells along, clamped on its first two columns at x = ∓a/2 (mid-edge
-/// bending holds the rotation at x = 0, see test_bending_convergence.cpp), its end column at
-/// x = L carrying a normal force ramped to k_max E I / L² over the scene's 4 steps.
+/// Sze's strip (support/sze_strip.hpp) with nx cells along, clamped on its first two columns
+/// at x = ∓a/2 (mid-edge bending holds the rotation at x = 0, see
+/// test_bending_convergence.cpp), its end column at x = L carrying a normal force ramped to
+/// k_max E I / L² over 4 steps.
 Scene follower_cantilever(int nx, double k_max) {
-  const double a = kLength / (nx - 0.5);
-  Body body;
-  body.name = "strip";
-  body.mesh = make_grid(kLength + 0.5 * a, kWidth, nx, nx / 10);
-  body.mesh.vertices.col(0).array() -= 0.5 * a;
-  body.material.youngs_modulus = kModulus;
-  body.material.poisson_ratio = 0.0;
-  body.material.thickness = kThickness;
-  body.material.density = 1.0;
-  body.material.bending_model = BendingModel::midedge;
-  Scene scene;
-  scene.name = "follower_cantilever";
-  scene.mode = StepMode::quasistatic;
-  scene.time_step = 0.25;
-  scene.duration = 1.0;
-  scene.effects.enable(Effect::membrane);
-  scene.effects.enable(Effect::bending);
-  scene.solver.tolerance = 1e-9;
-  scene.solver.max_iterations = 500;
+  const double a = kSzeLength / (nx - 0.5);
+  Scene scene =
+      sze_strip_scene("follower_cantilever", -0.5 * a, kSzeLength, nx, BendingModel::midedge, 0.25);
   Handle clamp;
+  clamp.vertices = sze_vertices_below(scene, a);
   Load end;
-  end.normal_force = k_max * kBendingStiffness / (kLength * kLength);
+  end.normal_force = k_max * kSzeBendingStiffness / (kSzeLength * kSzeLength);
   end.distribution = LoadDistribution::area;
   end.ramp = 1.0;
-  for (int v = 0; v < body.mesh.num_vertices(); ++v) {
-    if (body.mesh.vertices(v, 0) < a) clamp.vertices.push_back(v);
-    if (body.mesh.vertices(v, 0) > kLength - 1e-9) end.vertices.push_back(v);
-  }
-  scene.bodies.push_back(body);
+  end.vertices = sze_vertices_above(scene, kSzeLength - 1e-9);
   scene.handles.push_back(clamp);
   scene.loads.push_back(end);
   return scene;
@@ -65,13 +43,13 @@ Eigen::Vector2d tip_over_length(const LevelSimulation& sim, const Scene& scene) 
   for (int v : scene.loads[0].vertices)
     sum += (sim.positions().row(v) - scene.bodies[0].mesh.vertices.row(v)).transpose();
   sum /= static_cast<double>(scene.loads[0].vertices.size());
-  return Eigen::Vector2d(-sum.x(), sum.z()) / kLength;
+  return Eigen::Vector2d(-sum.x(), sum.z()) / kSzeLength;
 }
 
 }  // namespace
 
 TEST(FollowerLoads, CantileverUnderAnEndLoadNormalToItMatchesTheElastica) {
-  // Elastica θ'' = −k cos(θ − θ_L), θ(0) = 0, θ'(1) = 0 (tests/data/elastica_follower_end_load.py,
+  // Elastica θ'' = −k cos(θ − θ_L), θ(0) = 0, θ'(1) = 0 (tests/data/elastica.py,
   // RK4 shooting): (−u/L, w/L) = (0.06435, 0.32064), (0.23264, 0.57384), (0.65725, 0.78617) at
   // k = P L²/E I = 1, 2, 4. A dead load of the same size gives (0.32894, 0.66996) at k = 4
   // (Sze 3.1), so the test tells a follower from a dead load. Measured: largest error (of L)

@@ -8,53 +8,31 @@
 #include <cstdio>
 
 #include "common/constants.hpp"
-#include "mesh/mesh_generators.hpp"
 #include "scene/scene_json.hpp"
 #include "sim/level_simulation.hpp"
 #include "support/expect_error.hpp"
+#include "support/sze_strip.hpp"
 
 using namespace progsim;
-using progsim::test_support::expect_error;
+using namespace progsim::test_support;
 
 namespace {
 
-/// Sze et al. 2004's strip: L = 10, b = 1, h = 0.1, E = 1.2e6, ν = 0, so E I = 100.
-constexpr double kLength = 10.0, kWidth = 1.0, kThickness = 0.1, kModulus = 1.2e6;
-constexpr double kBendingStiffness = kModulus * kWidth * kThickness * kThickness * kThickness / 12;
-
-/// The strip along x with nx cells (width nx/10 cells), mid-edge bending. Mid-edge bending holds
-/// a two-column group's rotation halfway between its columns (see test_bending_convergence.cpp),
-/// so the mesh runs from −a/2 to L + a/2 (a the cell size): the clamp's columns at ∓a/2 and the
-/// end group's at L ∓ a/2 leave a free length of L between x = 0 and x = L.
+/// Sze's strip (support/sze_strip.hpp) with nx cells, mid-edge bending. Mid-edge bending
+/// holds a two-column group's rotation halfway between its columns (see
+/// test_bending_convergence.cpp), so the mesh runs from −a/2 to L + a/2 (a the cell size): the
+/// clamp's columns at ∓a/2 and the end group's at L ∓ a/2 leave a free length of L between
+/// x = 0 and x = L. The end group is a rotation support free to translate.
 Scene strip_scene(int nx, int steps) {
-  const double a = kLength / (nx - 1);
-  Body body;
-  body.name = "strip";
-  body.mesh = make_grid(kLength + a, kWidth, nx, nx / 10);
-  body.mesh.vertices.col(0).array() -= 0.5 * a;
-  body.material.youngs_modulus = kModulus;
-  body.material.poisson_ratio = 0.0;
-  body.material.thickness = kThickness;
-  body.material.density = 1.0;
-  body.material.bending_model = BendingModel::midedge;
-  Scene scene;
-  scene.name = "rotation_support";
-  scene.mode = StepMode::quasistatic;
-  scene.time_step = 1.0 / steps;
-  scene.duration = 1.0;
-  scene.effects.enable(Effect::membrane);
-  scene.effects.enable(Effect::bending);
-  scene.solver.tolerance = 1e-9;
-  scene.solver.max_iterations = 500;
+  const double a = kSzeLength / (nx - 1);
+  Scene scene = sze_strip_scene("rotation_support", -0.5 * a, kSzeLength + 0.5 * a, nx,
+                                BendingModel::midedge, 1.0 / steps);
   Handle clamp, end;
+  clamp.vertices = sze_vertices_below(scene, a);
+  end.vertices = sze_vertices_above(scene, kSzeLength - a);
   end.support = HandleSupport::rotation;
   end.axes = 0;  // a free translation
-  end.motion.center = Vec3(kLength, 0, 0);
-  for (int v = 0; v < body.mesh.num_vertices(); ++v) {
-    if (body.mesh.vertices(v, 0) < a) clamp.vertices.push_back(v);
-    if (body.mesh.vertices(v, 0) > kLength - a) end.vertices.push_back(v);
-  }
-  scene.bodies.push_back(body);
+  end.motion.center = Vec3(kSzeLength, 0, 0);
   scene.handles = {clamp, end};
   return scene;
 }
@@ -81,16 +59,18 @@ TEST(RotationSupport, GuidedEndOfAFixedGuidedBeamDeflectsAndCarriesPLOverTwo) {
   LevelSimulation sim(scene);
   const StepRecord r = sim.step();
   ASSERT_EQ(r.newton.stop, NewtonStop::converged) << stop_name(r.newton.stop);
-  const double expected = p * std::pow(kLength, 3) / (12.0 * kBendingStiffness);
+  const double expected = p * std::pow(kSzeLength, 3) / (12.0 * kSzeBendingStiffness);
   const Vec3 end = centroid(sim, scene.handles[1]);
   std::printf(
       "[ guided   ] deflection %.6f (beam theory %.6f), end moments %.5f %.5f (PL/2 %.5f)\n",
-      -end.z(), expected, r.reactions[0].moment.y(), r.reactions[1].moment.y(), 0.5 * p * kLength);
+      -end.z(), expected, r.reactions[0].moment.y(), r.reactions[1].moment.y(),
+      0.5 * p * kSzeLength);
   EXPECT_NEAR(-end.z() / expected, 1.0, 0.01);
   ASSERT_EQ(r.reactions.size(), 2u);
   // The guided end is free to translate: its support supplies no force, only the moment.
   EXPECT_LT(r.reactions[1].force.norm(), 1e-6 * p);
-  EXPECT_NEAR(std::abs(r.reactions[1].moment.y()), 0.5 * p * kLength, 0.01 * 0.5 * p * kLength);
+  EXPECT_NEAR(std::abs(r.reactions[1].moment.y()), 0.5 * p * kSzeLength,
+              0.01 * 0.5 * p * kSzeLength);
   EXPECT_NEAR(r.reactions[0].force.z(), p, 1e-6 * p);  // the clamp carries the whole load
   // The end group kept its shape: every vertex moved by the same translation.
   const Vec3 shift = (sim.positions().row(scene.handles[1].vertices[0]) -
@@ -123,15 +103,15 @@ TEST(RotationSupport, TurningTheEndRollsTheStripIntoSzeArcs) {
     if (s % 4 != 0 || s == 12) continue;
     const double theta = 2.0 * kPi * s / steps;
     const Vec3 tip = centroid(sim, scene.handles[1]);
-    const Vec3 exact(kLength * std::sin(theta) / theta, 0.5 * kWidth,
-                     kLength * (1.0 - std::cos(theta)) / theta);
+    const Vec3 exact(kSzeLength * std::sin(theta) / theta, 0.5 * kSzeWidth,
+                     kSzeLength * (1.0 - std::cos(theta)) / theta);
     const double moment = std::abs(r.reactions[1].moment.y());
-    const double exact_moment = kBendingStiffness * theta / kLength;
+    const double exact_moment = kSzeBendingStiffness * theta / kSzeLength;
     std::printf("[ sze 3.2  ] %6.2f %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f\n", theta / (2 * kPi),
                 tip.x(), exact.x(), tip.z(), exact.z(), moment, exact_moment);
-    EXPECT_LT((tip - exact).norm(), 0.02 * kLength) << "M/Mmax = " << theta / (2 * kPi);
+    EXPECT_LT((tip - exact).norm(), 0.02 * kSzeLength) << "M/Mmax = " << theta / (2 * kPi);
     EXPECT_NEAR(moment / exact_moment, 1.0, 0.02) << "M/Mmax = " << theta / (2 * kPi);
-    EXPECT_LT(r.reactions[1].force.norm(), 1e-3 * exact_moment / kLength);
+    EXPECT_LT(r.reactions[1].force.norm(), 1e-3 * exact_moment / kSzeLength);
   }
 }
 
