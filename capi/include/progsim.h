@@ -366,54 +366,107 @@ typedef enum ps_effect {
 } ps_effect;
 
 /**
- * A simulation described in code. Fill with ps_sim_def_init(); the numeric fields follow
- * the parameter table (`progsim params` prints names, defaults, units and ranges):
- * field group_name is parameter group.name.
+ * A simulation described in code. Fill with ps_sim_def_init(). The numeric fields are the
+ * parameter table's rows (core/scene/parameters.def; `progsim params` prints it): field
+ * group_name is parameter group.name, written here by scripts/generate_c_parameters.py, which a
+ * test runs to check that the header matches the table.
  */
 typedef struct ps_sim_def {
-  double simulation_time_step;     /**< s, (0, 100]; default 0.01 */
-  double simulation_duration;      /**< s, (0, 1e7]; default 1 (CLI runs only) */
-  int32_t simulation_output_every; /**< steps, ≥ 1; default 1 (CLI runs only) */
-  /** s, [0, 1e7]; default 0: gravity grows linearly from 0 over this time (quasistatic
-   *  self-weight in load steps), like a body's pressure_ramp; 0: full gravity at once */
+  /* BEGIN fields generated from core/scene/parameters.def by scripts/generate_c_parameters.py */
+  /** Time step h of implicit Euler (dynamic) or the load-step length (quasistatic). Unit s,
+   * range (0, 100]; default 0.01. */
+  double simulation_time_step;
+  /** Simulated time; the run takes round(duration / time_step) steps. Unit s, range (0, 1e7];
+   * default 1. */
+  double simulation_duration;
+  /** Write a mesh every this many steps (the last step is always written). Unit steps, range [1,
+   * 1000000000]; default 1. */
+  int32_t simulation_output_every;
+  /** Gravity grows linearly from 0 to its full value over this time, like a body's pressure_ramp
+   * (quasistatic self-weight in load steps); 0: full gravity from the start. Unit s, range [0,
+   * 1e7]; default 0. */
   double simulation_gravity_ramp;
-  double material_youngs_modulus; /**< Pa, (0, 1e13]; default 1e6 */
-  /** Pa, [0, 1e13]; default 0: the bending term's own Young's modulus, 0 for
-   *  material_youngs_modulus (cloth often bends stiffer or softer than it stretches) */
+  /** Young's modulus E of the shell material. Unit Pa, range (0, 1e13]; default 1e6. */
+  double material_youngs_modulus;
+  /** Young's modulus of the bending term alone (cloth often bends stiffer or softer than it
+   * stretches; PSQ's tables give E_mem and E_bend); 0: youngs_modulus. Unit Pa, range [0, 1e13];
+   * default 0. */
   double material_bending_youngs_modulus;
-  double material_poisson_ratio;    /**< 1, (−1, 0.5); default 0.3 */
-  double material_thickness;        /**< m, (0, 10]; default 1e-3 */
-  double material_density;          /**< kg/m³, (0, 1e6]; default 200 */
-  double material_friction;         /**< Coulomb μ, [0, 10]; default 0 (frictionless) */
-  double material_strain_limit;     /**< max stretch, 0 (none) or (1, 100]; default 0 */
-  double contact_dhat;              /**< m, activation gap, (0, 10]; default 1e-3 */
-  double contact_stiffness;         /**< N/m³, [0, 1e30]; default 0 (adaptive) */
-  double contact_friction_velocity; /**< m/s, (0, 1e3]; default 1e-3 */
-  /** 0 (default) or 1: a progressive simulation may start from a finest rest shape that
-   *  crosses itself (`progsim params`); 0 refuses it with PS_ERROR_INTERSECTING */
+  /** Poisson ratio nu; must lie in (-1, 0.5). Unit 1, range (-1, 0.5); default 0.3. */
+  double material_poisson_ratio;
+  /** Shell thickness t (membrane energy scales with t, bending with t^3). Unit m, range (0, 10];
+   * default 0.001. */
+  double material_thickness;
+  /** Volumetric density rho; the areal density is rho * t. Unit kg/m^3, range (0, 1e6]; default
+   * 200. */
+  double material_density;
+  /** Coulomb friction coefficient mu of the surface; a pair uses sqrt(mu_a * mu_b). 0:
+   * frictionless. Unit 1, range [0, 10]; default 0. */
+  double material_friction;
+  /** Largest principal membrane stretch s_max (> 1, e.g. 1.06), kept by a barrier; 0: no limit.
+   * Unit 1, range [0, 100]; default 0. */
+  double material_strain_limit;
+  /** Contact activation gap d-hat: the barrier acts on primitive pairs closer than this. Unit m,
+   * range (0, 10]; default 0.001. */
+  double contact_dhat;
+  /** Barrier stiffness kappa on squared distances; 0: chosen from the loads and grown
+   * adaptively. Unit N/m^3, range [0, 1e30]; default 0. */
+  double contact_stiffness;
+  /** Friction smoothing speed eps_v: slips slower than this are treated as sticking. Unit m/s,
+   * range (0, 1000]; default 0.001. */
+  double contact_friction_velocity;
+  /** 1: a progressive run may start from a finest rest shape that crosses itself or an obstacle
+   * (its coarse levels must not); safe refinement separates it level by level and the summary
+   * counts the input's crossing face pairs. 0: such a scene is refused, naming a crossing pair.
+   * Direct runs always refuse it. Unit 1, range [0, 1]; default 0. */
   int32_t contact_crossing_start;
-  double solver_newton_tolerance;       /**< 1, (0, 1]; default 1e-5 */
-  int32_t solver_max_newton_iterations; /**< ≥ 1; default 100 */
-  /** ≥ 0; default 0 (off): CG refinement of projected Newton steps (`progsim params`) */
+  /** Density rho of the air the wind blows (1.2: air at 20 C). Unit kg/m^3, range (0, 10000];
+   * default 1.2. */
+  double wind_density;
+  /** Drag coefficient C_d of each face: normal force 1/2 rho C_d A abs(u.n) (u.n) n from the
+   * relative wind u (about 1.2 for a flat plate across a flow); 0: no drag. Unit 1, range [0,
+   * 100]; default 1.2. */
+  double wind_drag;
+  /** Lift coefficient C_L of each face: force 1/2 rho C_L A u^2 cos(a) sin(a) across u in the
+   * plane of u and the normal n (a: the angle of u and n); 0: no lift. Unit 1, range [0, 100];
+   * default 0. */
+  double wind_lift;
+  /** Newton stops when |p|_inf / s < tolerance * bbox diagonal (s = h for dynamics, 1 for
+   * quasistatics). Unit 1, range (0, 1]; default 1e-5. */
+  double solver_newton_tolerance;
+  /** Cap on Newton iterations per step; hitting it is reported, not an error. Unit 1, range [1,
+   * 1000000]; default 100. */
+  int32_t solver_max_newton_iterations;
+  /** CG iterations refining each projected Newton step against the exact Hessian
+   * (Steihaug-Toint, trust region; not in PSQ proxy solves); 0: off. Unit 1, range [0, 1000000];
+   * default 0. */
   int32_t solver_max_cg_iterations;
-  /** 1 (default) or 0: line-search extrapolation of whole Newton steps (`progsim params`) */
+  /** 1: a whole Newton step whose energy fell much more than predicted is lengthened, doubling
+   * alpha while the energy falls and CCD allows (Nocedal & Wright 3.5); 0: off, for comparison
+   * runs. Unit 1, range [0, 1]; default 1. */
   int32_t solver_line_search_extrapolation;
-  /** 1, [0, 1e12]; default 0 (no penalty): a progressive animation's consistency penalty
-   *  w/(2h²)‖x − P(x_coarser)‖²_M pulling each finer level toward the prolonged coarser frame
-   *  (VPD eq. 4, from PD++; w = 1 weighs it like the inertia) */
-  double progressive_consistency_weight;
-  /** mean finest edge lengths, [0, 1e6]; default 0.5: a progressive animation's Galerkin proxy
-   *  Hessian is reassembled once the finest state has moved this far (net of its mean
-   *  translation) or Newton contracts slowly; 0: every Newton iteration (`progsim params`) */
-  double progressive_galerkin_refresh;
-  /** ≥ 1; default 8: PSQ's Newton iterations per preview step on a coarse level (PSQ §4.5) */
+  /** PSQ: Newton iterations per preview step on a coarse level (PSQ 4.5, Algorithm 1); dynamic
+   * previews solve each step to the tolerance instead. Unit 1, range [1, 1000000]; default 8. */
   int32_t progressive_preview_iterations;
-  /** 1, [0, 1]; default 0 (solver_newton_tolerance): tolerance of preview solves and of a
-   *  preview level being at rest (PSQ Algorithm 1 line 10) */
+  /** Tolerance of preview solves, for their Newton steps and for when a preview level is at rest
+   * (PSQ Algorithm 1 line 10); 0: solver.newton_tolerance. Unit 1, range [0, 1]; default 0. */
   double progressive_preview_tolerance;
-  /** 0 (default) or 1: quasistatic steps add PSQ eq. 1's proximal term on every level and in
-   *  the direct baseline, keeping free bodies' Newton matrices definite (`progsim params`) */
+  /** 1: quasistatic steps add PSQ eq. 1's proximal term 1/(2h^2) |x - x_t|^2_M on every level
+   * and in the direct baseline, a gradient flow that keeps the Newton matrix definite for free
+   * bodies (a cloth dropped on a sphere); 0: off. Unit 1, range [0, 1]; default 0. */
   int32_t progressive_proximal;
+  /** Dynamic scenes with the Galerkin proxy Hessian: it is reassembled once the finest state has
+   * moved, net of its mean translation, by more than this many mean finest edge lengths at some
+   * vertex since the last assembly (the proxy's gradient stays exact; a chord method; a Newton
+   * step longer than 0.8 of the previous one also reassembles it); 0: every Newton iteration, as
+   * quasistatic previews always do. Unit 1, range [0, 1e6]; default 0.5. */
+  double progressive_galerkin_refresh;
+  /** Progressive Dynamics: weight w of the consistency penalty (VPD eq. 4, from PD++), w/(2h^2)
+   * times the squared mass norm of x - P(x_coarser), pulling each finer level toward the
+   * prolonged coarser frame (w = 1 weighs it like the inertia); 0: no penalty term. Unit 1,
+   * range [0, 1e12]; default 0. */
+  double progressive_consistency_weight;
+  /* END generated fields */
   ps_mode mode; /**< default PS_MODE_DYNAMIC */
   /** a progressive animation's prediction; default PS_PREDICTION_VELOCITY_ONLY */
   ps_prediction prediction;
@@ -424,12 +477,9 @@ typedef struct ps_sim_def {
   const int32_t* pinned_vertices;
   size_t num_pinned_vertices; /**< entries in pinned_vertices; default 0 */
   int32_t internal_cookie;    /**< set by ps_sim_def_init(); do not touch */
-  /* The wind (PS_EFFECT_WIND; dynamic only): per face, drag ½ ρ C_d A |u·n| (u·n) n and lift
-   * across u = wind − face velocity (scenes/README.md, "Wind"). */
-  double wind_density;     /**< ρ, kg/m³, (0, 1e4]; default 1.2 */
-  double wind_drag;        /**< C_d, 1, [0, 100]; default 1.2 */
-  double wind_lift;        /**< C_L, 1, [0, 100]; default 0 (no lift) */
-  double wind_velocity[3]; /**< m/s; default (0, 0, 0): still air, drag only */
+  /** The wind (PS_EFFECT_WIND; dynamic only, with wind_density, wind_drag and wind_lift above):
+   *  m/s; default (0, 0, 0): still air, drag only (scenes/README.md, "Wind"). */
+  double wind_velocity[3];
   /** Gusts: num_wind_keyframes rows (time s, vx, vy, vz m/s), times increasing, the wind linear
    *  between them and held outside them; they replace wind_velocity. Nullable; borrowed during
    *  create. */
