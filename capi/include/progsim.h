@@ -154,11 +154,19 @@ typedef struct ps_hierarchy_def {
   ps_progress_fn progress;
   /** Passed back to progress unchanged. Default NULL. */
   void* progress_user_data;
-  /** Vertices a simulation will hold (ps_sim_def.pinned_vertices): they are kept on every
-   *  level at their rest positions. A multi-level simulation's pinned vertices must be exactly
-   *  these. Nullable; borrowed during the create call only. */
+  /** Vertices a simulation will hold (ps_sim_def.pinned_vertices): vertex group 0, kept on
+   *  every level at their rest positions. A multi-level simulation's pinned vertices must be
+   *  exactly these. Nullable; borrowed during the create call only. */
   const int32_t* pinned_vertices;
   size_t num_pinned_vertices; /**< entries in pinned_vertices; default 0 */
+  /** Several vertex groups instead of pinned_vertices (not both): per input vertex its group,
+   *  −1 for none, the groups numbered 0, 1, ... without gaps. Each group keeps its rest
+   *  positions on every level and no collapse joins two groups. A multi-level simulation's
+   *  handle i must be exactly group i: ps_sim_def.pinned_vertices group 0, then
+   *  ps_sim_add_handle() the next. Nullable; num_vertex_group_ids is then 0, else the mesh's
+   *  vertex count; borrowed during the create call only. */
+  const int32_t* vertex_group_ids;
+  size_t num_vertex_group_ids; /**< entries in vertex_group_ids; default 0 */
   /** m, ≥ 0; default 0. Coarse levels never cross themselves; with a contact offset ξ (half
    *  the shell thickness a contact simulation will use), no collapse also brings a vertex and
    *  a face, or two edges, that share no vertex within 2ξ (what contact checks at a level's
@@ -830,9 +838,9 @@ PS_API int32_t ps_sim_set_handle_keyframes(ps_sim* sim, int32_t handle, const do
  * ps_sim_set_handle_keyframes() scripts them, prescribing all three coordinates until
  * ps_sim_set_handle_axes(). Its index (ps_sim_num_handles() − 1) goes to *out_index
  * (nullable). This rebuilds the simulation, so it is only allowed before its first step,
- * settle or refinement. On a hierarchy of several levels the scene's handles must be the
- * hierarchy's vertex groups (ps_hierarchy_def.pinned_vertices gives one, held by
- * ps_sim_def.pinned_vertices), so this call serves single-level simulations. Errors:
+ * settle or refinement. On a hierarchy of several levels handle i must be the hierarchy's vertex
+ * group i (ps_hierarchy_def.vertex_group_ids, or pinned_vertices for group 0 alone): after
+ * ps_sim_def.pinned_vertices (group 0), each call adds the next group. Errors:
  * PS_ERROR_NULL_ARGUMENT (vertices NULL with num_vertices > 0), PS_ERROR_INVALID_SCENE (no vertex,
  * a body or vertex index out of range: the message names it), PS_ERROR_WRONG_CALL_ORDER (after a
  * step), PS_ERROR_INVALID_ARGUMENT (on several levels, vertices that are not a vertex group of the

@@ -1,5 +1,6 @@
 // ps_hierarchy_*: building, saving and loading a mesh hierarchy, reading its levels and
 // prolonging positions to the finest level.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -66,6 +67,35 @@ std::vector<int> pinned_groups(const ps_hierarchy_def& def, std::size_t num_vert
   return groups;
 }
 
+/// def's vertex_group_ids as the vertex groups of a mesh of `num_vertices` vertices: one id per
+/// vertex, −1 or a group, the groups 0 .. G−1 each used.
+std::vector<int> listed_groups(const ps_hierarchy_def& def, std::size_t num_vertices) {
+  require(def.vertex_group_ids, "vertex_group_ids (with num_vertex_group_ids > 0)");
+  if (def.num_pinned_vertices > 0)
+    api_fail(PS_ERROR_INVALID_ARGUMENT,
+             "pinned_vertices and vertex_group_ids: give the groups one way, not both");
+  if (def.num_vertex_group_ids != num_vertices)
+    api_fail(PS_ERROR_INVALID_ARGUMENT,
+             "num_vertex_group_ids = " + std::to_string(def.num_vertex_group_ids) +
+                 " must be the mesh's vertex count, " + std::to_string(num_vertices));
+  std::vector<int> groups(def.vertex_group_ids, def.vertex_group_ids + num_vertices);
+  const int count = 1 + *std::max_element(groups.begin(), groups.end());
+  std::vector<bool> used(static_cast<std::size_t>(std::max(count, 0)), false);
+  for (std::size_t v = 0; v < num_vertices; ++v) {
+    if (groups[v] < -1)
+      api_fail(PS_ERROR_INVALID_ARGUMENT, "vertex_group_ids[" + std::to_string(v) +
+                                              "] = " + std::to_string(groups[v]) +
+                                              " must be -1 (no group) or a group >= 0");
+    if (groups[v] >= 0) used[groups[v]] = true;
+  }
+  for (int g = 0; g < count; ++g)
+    if (!used[g])
+      api_fail(PS_ERROR_INVALID_ARGUMENT, "vertex_group_ids: group " + std::to_string(g) +
+                                              " has no vertex (groups are numbered 0, 1, ... "
+                                              "without gaps, as the handles they become)");
+  return groups;
+}
+
 /// The build options of def (nullable: a single level) for a mesh of `num_vertices` vertices
 /// (0: not known yet, pinned vertices unchecked); rejects defs nobody initialised.
 HierarchyOptions hierarchy_options(const ps_hierarchy_def* def, std::size_t num_vertices) {
@@ -76,7 +106,9 @@ HierarchyOptions hierarchy_options(const ps_hierarchy_def* def, std::size_t num_
       borrowed_array(def->coarse_vertex_counts, def->num_coarse_levels, "coarse_vertex_counts",
                      "num_coarse_levels", 64);
   options.coarse_vertex_counts.assign(counts.begin(), counts.end());
-  if (num_vertices > 0) options.vertex_groups = pinned_groups(*def, num_vertices);
+  if (num_vertices > 0)
+    options.vertex_groups = def->num_vertex_group_ids > 0 ? listed_groups(*def, num_vertices)
+                                                          : pinned_groups(*def, num_vertices);
   if (!(def->contact_offset >= 0.0) || !std::isfinite(def->contact_offset))
     api_fail(PS_ERROR_INVALID_ARGUMENT, "contact_offset = " + std::to_string(def->contact_offset) +
                                             " is invalid: it must be a finite length >= 0 (m)");

@@ -20,7 +20,8 @@ class HandleTargets {
  public:
   /// `vertex_handle` (|V|): per vertex of `rest`, its handle in scene.handles or −1. On a
   /// coarse level these are the hierarchy's level_groups(), whose rest positions are input rest
-  /// positions of the same handle, so the rigid script is exact on every level.
+  /// positions of the same handle, so the rigid script is exact on every level; a group from
+  /// scene.handles.size() on is not a handle (yet) and holds nothing.
   HandleTargets(const Scene& scene, const Positions& rest, const std::vector<int>& vertex_handle);
   HandleTargets() = default;  ///< no handles
 

@@ -106,14 +106,16 @@ void LevelSimulation::build_models() {
   ShellModel finest = build_shell_model(scene_);
   const std::vector<int> finest_handles = vertex_handles(scene_, finest);
   if (!level_.hierarchy || level_.is_finest()) {
-    if (level_.hierarchy) check_hierarchy_matches(*level_.hierarchy, finest.rest, finest_handles);
+    if (level_.hierarchy)
+      check_hierarchy_matches(*level_.hierarchy, finest.rest, finest_handles,
+                              scene_.handles.size());
     handles_ = HandleTargets(scene_, finest.rest.vertices, finest_handles);
     model_ = std::move(finest);
     finest_.reset();
     return;
   }
   const MeshHierarchy& h = *level_.hierarchy;
-  check_hierarchy_matches(h, finest.rest, finest_handles);
+  check_hierarchy_matches(h, finest.rest, finest_handles, scene_.handles.size());
   model_ = level_shell_model(finest, h, level_.level);
   if (scene_.mode == StepMode::dynamic && !level_.to_finest.empty())  // PD eq. 4's M_l
     model_.vertex_masses = prolonged_masses(level_.to_finest, finest.vertex_masses);

@@ -51,7 +51,7 @@ ShellModel level_shell_model(const ShellModel& finest, const MeshHierarchy& hier
 }
 
 void check_hierarchy_matches(const MeshHierarchy& hierarchy, const TriangleMesh& finest,
-                             const std::vector<int>& vertex_handle) {
+                             const std::vector<int>& vertex_handle, std::size_t num_handles) {
   const TriangleMesh& mesh = hierarchy.levels.back().rest;
   if (!same_array(mesh.vertices, finest.vertices) || !same_array(mesh.faces, finest.faces))
     fail(Status::invalid_argument,
@@ -60,13 +60,18 @@ void check_hierarchy_matches(const MeshHierarchy& hierarchy, const TriangleMesh&
              std::to_string(finest.num_vertices()) + " vertices, " +
              std::to_string(finest.num_faces()) + " faces)");
   if (hierarchy.num_levels() == 1) return;  // a single level has no decimated handles
-  for (std::size_t v = 0; v < vertex_handle.size(); ++v)
-    if (vertex_handle[v] != hierarchy.input_group[v])
+  const auto handles = static_cast<int>(num_handles);
+  for (std::size_t v = 0; v < vertex_handle.size(); ++v) {
+    const int group = hierarchy.input_group[v];
+    const bool group_not_a_handle_yet = vertex_handle[v] < 0 && group >= handles;
+    if (vertex_handle[v] != group && !group_not_a_handle_yet)
       fail(Status::invalid_argument,
            "vertex " + std::to_string(v) + " is in handle " + std::to_string(vertex_handle[v]) +
-               " of the scene but in group " + std::to_string(hierarchy.input_group[v]) +
+               " of the scene but in group " + std::to_string(group) +
                " of the hierarchy: build the hierarchy with the scene's handles as vertex groups "
-               "(C ABI: ps_hierarchy_def.pinned_vertices)");
+               "(C ABI: ps_hierarchy_def.pinned_vertices or vertex_group_ids; handle i is group "
+               "i)");
+  }
 }
 
 Eigen::VectorXd prolonged_masses(

@@ -42,9 +42,10 @@ Eigen::VectorXd prolonged_masses(
     const Eigen::VectorXd& finest_masses);
 
 /// Throws Error(invalid_argument) unless `hierarchy`'s finest level has exactly the vertices and
-/// faces of `finest` and its vertex groups are exactly `vertex_handle` (the scene's handles:
-/// coarse levels keep handle vertices only where the hierarchy was built with them).
+/// faces of `finest` and its vertex groups 0 .. num_handles − 1 are exactly `vertex_handle` (the
+/// scene's handles: coarse levels keep handle vertices only where the hierarchy was built with
+/// them). Groups from num_handles on are not handles (yet): their vertices are free.
 void check_hierarchy_matches(const MeshHierarchy& hierarchy, const TriangleMesh& finest,
-                             const std::vector<int>& vertex_handle);
+                             const std::vector<int>& vertex_handle, std::size_t num_handles);
 
 }  // namespace progsim

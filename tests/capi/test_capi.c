@@ -855,6 +855,70 @@ static void test_strain_correction(void) {
   ps_sim_destroy(sim);
 }
 
+/* Several vertex groups in one hierarchy: a PSQ simulation of two levels holds the top-left
+ * corner as group 0 (ps_sim_def.pinned_vertices) and the top-right corner as group 1
+ * (ps_sim_add_handle), the second dragged sideways, on every level. */
+static void test_vertex_groups(void) {
+  int32_t ids[441];
+  for (int32_t v = 0; v < 441; ++v) ids[v] = -1;
+  ids[420] = ids[421] = 0; /* the top row is y = 1: vertices 420 .. 440 */
+  ids[439] = ids[440] = 1;
+  ps_hierarchy_def hdef;
+  ps_hierarchy_def_init(&hdef);
+  const int32_t coarse[1] = {60};
+  hdef.coarse_vertex_counts = coarse;
+  hdef.num_coarse_levels = 1;
+  hdef.vertex_group_ids = ids;
+  hdef.num_vertex_group_ids = 440;
+  const char* mesh = path_in_source("scenes/meshes/square_cloth.obj");
+  ps_hierarchy* h = NULL;
+  CHECK_ERROR(ps_hierarchy_create_from_file(&hdef, mesh, &h), PS_ERROR_INVALID_ARGUMENT,
+              ps_last_error(), "num_vertex_group_ids = 440");
+  hdef.num_vertex_group_ids = 441;
+  ids[439] = ids[440] = 2; /* a gap: group 1 is empty */
+  CHECK_ERROR(ps_hierarchy_create_from_file(&hdef, mesh, &h), PS_ERROR_INVALID_ARGUMENT,
+              ps_last_error(), "group 1 has no vertex");
+  ids[439] = ids[440] = 1;
+  const int32_t left[2] = {420, 421}, right[2] = {439, 440}, stray[1] = {0};
+  hdef.pinned_vertices = left;
+  hdef.num_pinned_vertices = 2;
+  CHECK_ERROR(ps_hierarchy_create_from_file(&hdef, mesh, &h), PS_ERROR_INVALID_ARGUMENT,
+              ps_last_error(), "not both");
+  hdef.pinned_vertices = NULL;
+  hdef.num_pinned_vertices = 0;
+  CHECK(ps_hierarchy_create_from_file(&hdef, mesh, &h) == PS_OK);
+  if (!h) return;
+  ps_sim_def def;
+  ps_sim_def_init(&def);
+  def.mode = PS_MODE_QUASISTATIC;
+  def.pinned_vertices = left;
+  def.num_pinned_vertices = 2;
+  ps_sim* sim = NULL;
+  CHECK(ps_sim_create(h, &def, &sim) == PS_OK);
+  if (!sim) return;
+  int32_t index = -1;
+  CHECK_ERROR(ps_sim_add_handle(sim, 0, stray, 1, &index), PS_ERROR_INVALID_ARGUMENT,
+              ps_sim_last_error(sim), "group -1 of the hierarchy");
+  CHECK(ps_sim_add_handle(sim, 0, right, 2, &index) == PS_OK && index == 1);
+  const double offset[3] = {0.05, 0, 0};
+  CHECK(ps_sim_set_handle_motion(sim, 1, NULL, NULL, NULL, 0.0, offset) == PS_OK);
+  CHECK(ps_sim_step_preview(sim, 2) == PS_OK);
+  double coarse_x[3 * 60];
+  size_t count = 0;
+  CHECK(ps_sim_get_positions(sim, 0, coarse_x, 3 * 60, &count) == PS_OK && count == 3 * 60);
+  int dragged = 0; /* the coarse level keeps the corner (1, 1, 0) and drags it to x = 1.05 */
+  for (int i = 0; i < 60; ++i)
+    dragged += fabs(coarse_x[3 * i] - 1.05) < 1e-12 && fabs(coarse_x[3 * i + 1] - 1.0) < 1e-12;
+  CHECK(dragged == 1);
+  CHECK(ps_sim_refine(sim) == PS_OK);
+  double fine[3 * 441];
+  CHECK(ps_sim_get_positions(sim, 1, fine, 3 * 441, &count) == PS_OK && count == 3 * 441);
+  CHECK(fabs(fine[3 * 440] - 1.05) < 1e-12 && fabs(fine[3 * 440 + 1] - 1.0) < 1e-12);
+  CHECK(fabs(fine[3 * 420]) < 1e-12 && fabs(fine[3 * 420 + 1] - 1.0) < 1e-12);
+  ps_sim_destroy(sim);
+  ps_hierarchy_destroy(h);
+}
+
 int main(int argc, char** argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: test_capi SOURCE_DIR\n");
@@ -870,6 +934,7 @@ int main(int argc, char** argv) {
   test_scene_file();
   test_handle_keyframes();
   test_levels();
+  test_vertex_groups();
   test_progressive();
   test_crossing_input();
   test_progressive_obstacle();

@@ -99,3 +99,29 @@ def test_bad_requests_are_clear_errors(levels):
         assert sim.kind == "progressive_dynamics"
         with pytest.raises(progsim.WrongCallOrderError, match="preview at least one step"):
             sim.refine()
+
+
+def test_two_vertex_groups_become_two_handles_on_every_level():
+    """The cloth's top corners (top row y = 1: vertices 420..440) as groups 0 and 1: a PSQ
+    simulation pins the first, adds the second as handle 1 and drags it on every level."""
+    ids = np.full(441, -1, dtype=np.int32)
+    ids[[420, 421]] = 0
+    ids[[439, 440]] = 1
+    cloth = MESH
+    with progsim.Hierarchy.from_file(
+        cloth, coarse_vertex_counts=[60], vertex_group_ids=ids
+    ) as hierarchy, progsim.Simulation(hierarchy, mode="quasistatic", pinned=[420, 421]) as sim:
+        with pytest.raises(progsim.InvalidArgumentError, match="group -1 of the hierarchy"):
+            sim.add_handle([0])
+        assert sim.add_handle([439, 440]) == 1
+        sim.set_handle_motion(1, offset=(0.05, 0, 0))
+        sim.step_preview(2)
+        coarse = sim.positions(0)
+        at_corner = (np.abs(coarse[:, 0] - 1.05) < 1e-12) & (np.abs(coarse[:, 1] - 1.0) < 1e-12)
+        assert at_corner.sum() == 1
+        sim.refine()
+        fine = sim.positions(1)
+        np.testing.assert_allclose(fine[440, :2], [1.05, 1.0], atol=1e-12)
+        np.testing.assert_allclose(fine[420, :2], [0.0, 1.0], atol=1e-12)
+    with pytest.raises(progsim.InvalidArgumentError, match="not both"):
+        progsim.Hierarchy.from_file(cloth, pinned=[420], vertex_group_ids=ids)

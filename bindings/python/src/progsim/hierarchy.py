@@ -38,6 +38,7 @@ def _hierarchy_def(
     run: ProgressRun,
     tet_size_factor: Optional[float] = None,
     tet_cell_size: Optional[float] = None,
+    vertex_group_ids: Optional[Sequence[int]] = None,
 ):
     """A filled ``ps_hierarchy_def*`` with the progress trampoline installed, and the buffers
     it borrows (keep them alive during the call). ``None`` keeps a field's default."""
@@ -49,13 +50,16 @@ def _hierarchy_def(
     pins, pin_buffer = index_buffer(pinned, "pinned")
     definition.pinned_vertices = pin_buffer
     definition.num_pinned_vertices = int(pins.size)
+    groups, group_buffer = index_buffer(vertex_group_ids, "vertex_group_ids")
+    definition.vertex_group_ids = group_buffer
+    definition.num_vertex_group_ids = int(groups.size)
     definition.contact_offset = real_value(contact_offset, "contact_offset")
     if tet_size_factor is not None:
         definition.tet_size_factor = real_value(tet_size_factor, "tet_size_factor")
     if tet_cell_size is not None:
         definition.tet_cell_size = real_value(tet_cell_size, "tet_cell_size")
     run.install(definition)
-    return definition, (counts, buffer, pins, pin_buffer)
+    return definition, (counts, buffer, pins, pin_buffer, groups, group_buffer)
 
 
 def _create(
@@ -67,11 +71,18 @@ def _create(
     *args: Any,
     tet_size_factor: Optional[float] = None,
     tet_cell_size: Optional[float] = None,
+    vertex_group_ids: Optional[Sequence[int]] = None,
 ) -> "ffi.CData":
     """Runs a ps_hierarchy_create* call with a def and progress reporting; returns the handle."""
     run = ProgressRun(progress)
     definition, keep = _hierarchy_def(
-        coarse_vertex_counts, pinned, contact_offset, run, tet_size_factor, tet_cell_size
+        coarse_vertex_counts,
+        pinned,
+        contact_offset,
+        run,
+        tet_size_factor,
+        tet_cell_size,
+        vertex_group_ids,
     )
     out = ffi.new("ps_hierarchy**")
     try:
@@ -118,6 +129,7 @@ class Hierarchy(NativeObject):
         pinned: Optional[Sequence[int]] = None,
         contact_offset: float = 0.0,
         progress: ProgressArg = False,
+        vertex_group_ids: Optional[Sequence[int]] = None,
     ) -> None:
         """Builds a hierarchy from a triangle mesh, validating it first.
 
@@ -128,13 +140,18 @@ class Hierarchy(NativeObject):
                 C-contiguous int32 (no copy if it already is).
             coarse_vertex_counts: vertex counts of the coarser levels (distinct, each at least
                 4 and below n); ``None`` or empty: a single level, the mesh itself.
-            pinned: vertices a simulation will pin (``Simulation(pinned=...)``): kept on every
-                level at their rest positions. A progressive simulation's pins must be these.
+            pinned: vertices a simulation will pin (``Simulation(pinned=...)``): vertex group
+                0, kept on every level at their rest positions. A progressive simulation's pins
+                must be these.
             contact_offset: m, >= 0; default 0. Coarse levels never cross themselves; with
                 the offset ξ a contact simulation will use (half the shell thickness), no
                 collapse also brings a vertex and a face, or two edges, within 2ξ.
             progress: ``True`` for a tqdm bar over the decimation, ``False`` for none, or a
                 callable ``(done, total, phase) -> bool`` (percent; return True to cancel).
+            vertex_group_ids: several vertex groups instead of ``pinned`` (not both): per
+                vertex its group, -1 for none, groups numbered 0, 1, ... without gaps. Each is
+                kept on every level; a progressive simulation's handle i must be group i
+                (``pinned`` group 0, then :meth:`Simulation.add_handle` the next).
 
         Raises:
             InvalidMeshError: NaN/Inf coordinates, out-of-range indices, degenerate faces,
@@ -157,6 +174,7 @@ class Hierarchy(NativeObject):
                 vertex_array.shape[0],
                 ffi.from_buffer("int32_t[]", face_array),
                 face_array.shape[0],
+                vertex_group_ids=vertex_group_ids,
             )
         )
 
@@ -169,6 +187,7 @@ class Hierarchy(NativeObject):
         pinned: Optional[Sequence[int]] = None,
         contact_offset: float = 0.0,
         progress: ProgressArg = False,
+        vertex_group_ids: Optional[Sequence[int]] = None,
     ) -> "Hierarchy":
         """Builds a hierarchy from an OBJ, OFF or PLY triangle mesh file (positions in metres),
         with the same options as :class:`Hierarchy`.
@@ -184,6 +203,7 @@ class Hierarchy(NativeObject):
             contact_offset,
             progress,
             os.fsencode(path),
+            vertex_group_ids=vertex_group_ids,
         )
 
     @classmethod

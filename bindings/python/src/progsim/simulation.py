@@ -1076,9 +1076,9 @@ class Simulation(NativeObject):
         ``handles``).
 
         This rebuilds the simulation, so it is only allowed before the first step, settle or
-        refinement. On a hierarchy of several levels the scene's handles must be the
-        hierarchy's vertex groups (``Hierarchy(..., pinned=...)`` gives one, which
-        ``Simulation(..., pinned=...)`` holds), so this serves single-level simulations.
+        refinement. On a hierarchy of several levels handle i must be the hierarchy's vertex
+        group i (``Hierarchy(..., vertex_group_ids=...)``, or ``pinned=`` for group 0 alone):
+        after ``Simulation(..., pinned=...)`` (group 0), each call adds the next group.
 
         Args:
             vertices: vertex indices within the body's mesh, shape (k,), k >= 1.

@@ -22,9 +22,16 @@ pub struct HierarchyDef {
     /// Vertex count of each level below the finest (distinct, each at least 4 and below the
     /// mesh's; any order). Empty: a single level.
     pub coarse_vertex_counts: Vec<i32>,
-    /// Vertices a simulation will pin ([`SimulationDef`]'s pinned vertices): kept on every
-    /// level at their rest positions. A progressive simulation's pins must be exactly these.
+    /// Vertices a simulation will pin ([`SimulationDef`]'s pinned vertices): vertex group 0,
+    /// kept on every level at their rest positions. A progressive simulation's pins must be
+    /// exactly these.
     pub pinned_vertices: Vec<i32>,
+    /// Several vertex groups instead of `pinned_vertices` (not both): per vertex of the mesh
+    /// its group, −1 for none, groups numbered 0, 1, ... without gaps; empty: none. Each is kept
+    /// on every level; a progressive simulation's handle i must be group i (the pinned
+    /// vertices group 0, then [`Simulation::add_handle`](crate::Simulation::add_handle) the
+    /// next) (`ps_hierarchy_def.vertex_group_ids`).
+    pub vertex_group_ids: Vec<i32>,
     /// Contact offset ξ, m, ≥ 0; default 0. Coarse levels never cross themselves; with the
     /// offset a contact simulation will use (half the shell thickness), no collapse also brings
     /// a vertex and a face, or two edges, within 2ξ (`ps_hierarchy_def.contact_offset`).
@@ -55,6 +62,7 @@ impl Default for HierarchyDef {
         HierarchyDef {
             coarse_vertex_counts: Vec::new(),
             pinned_vertices: Vec::new(),
+            vertex_group_ids: Vec::new(),
             contact_offset: raw.contact_offset,
             tet_size_factor: raw.tet_size_factor,
             tet_cell_size: raw.tet_cell_size,
@@ -75,6 +83,10 @@ impl HierarchyDef {
         if !self.pinned_vertices.is_empty() {
             raw.pinned_vertices = self.pinned_vertices.as_ptr();
             raw.num_pinned_vertices = self.pinned_vertices.len();
+        }
+        if !self.vertex_group_ids.is_empty() {
+            raw.vertex_group_ids = self.vertex_group_ids.as_ptr();
+            raw.num_vertex_group_ids = self.vertex_group_ids.len();
         }
         raw.contact_offset = self.contact_offset;
         raw.tet_size_factor = self.tet_size_factor;
@@ -899,6 +911,11 @@ mod tests {
         assert_eq!((raw.tet_size_factor, raw.tet_cell_size), (0.8, 0.05));
         assert_eq!(raw.num_coarse_levels, 2);
         assert_eq!(raw.coarse_vertex_counts, def.coarse_vertex_counts.as_ptr());
+        assert!(raw.vertex_group_ids.is_null() && raw.num_vertex_group_ids == 0);
+        let grouped = HierarchyDef { vertex_group_ids: vec![-1, 0, 1], ..HierarchyDef::default() };
+        let raw = grouped.to_raw().unwrap();
+        assert_eq!(raw.vertex_group_ids, grouped.vertex_group_ids.as_ptr());
+        assert_eq!(raw.num_vertex_group_ids, 3);
     }
 
     #[test]

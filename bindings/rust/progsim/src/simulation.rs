@@ -380,9 +380,10 @@ impl<'h> Simulation<'h> {
     /// at rest until [`set_handle_motion`](Self::set_handle_motion) or
     /// [`set_handle_keyframes`](Self::set_handle_keyframes) scripts them; returns its index.
     /// This rebuilds the simulation, so only before the first step, settle or refinement. On
-    /// a hierarchy of several levels the scene's handles must be the hierarchy's vertex groups
-    /// ([`HierarchyDef`](crate::HierarchyDef)'s pinned vertices, held by
-    /// [`SimulationDef`]'s), so this serves single-level simulations.
+    /// a hierarchy of several levels handle i must be the hierarchy's vertex group i
+    /// ([`HierarchyDef`](crate::HierarchyDef)'s `vertex_group_ids`, or its pinned vertices for
+    /// group 0 alone): after [`SimulationDef`]'s pinned vertices (group 0), each call adds the
+    /// next group.
     ///
     /// # Errors
     /// [`Status::InvalidScene`] for no vertices or a body or vertex out of range (named);

@@ -4,7 +4,9 @@
 mod common;
 
 use common::square_cloth;
-use progsim::{Hierarchy, HierarchyDef, Mode, Simulation, SimulationDef, SimulationKind, Status};
+use progsim::{
+    HandleMotion, Hierarchy, HierarchyDef, Mode, Simulation, SimulationDef, SimulationKind, Status,
+};
 
 fn cloth_levels() -> Hierarchy {
     let def = HierarchyDef { coarse_vertex_counts: vec![30, 110], ..Default::default() };
@@ -107,4 +109,40 @@ fn progressive_preview_refines_to_the_converged_finest() {
     assert_eq!((refined.refinement.splits, refined.reduced_offsets), (0, 0));
     assert_eq!(sim.refine().unwrap_err().code, Status::OutOfRange);
     assert_eq!(sim.settle(0).unwrap_err().code, Status::InvalidArgument);
+}
+
+#[test]
+fn two_vertex_groups_become_two_handles_on_every_level() {
+    // The cloth's top corners (the top row is y = 1: vertices 420 ..= 440) as groups 0 and 1:
+    // a PSQ simulation holds the first by its pinned vertices, adds the second as handle 1 and
+    // drags it sideways; the coarse level and the finest both carry the corner there.
+    let mut ids = vec![-1; 441];
+    ids[420] = 0;
+    ids[421] = 0;
+    ids[439] = 1;
+    ids[440] = 1;
+    let def = HierarchyDef {
+        coarse_vertex_counts: vec![60],
+        vertex_group_ids: ids,
+        ..Default::default()
+    };
+    let hierarchy = Hierarchy::from_file_with(&def, square_cloth()).expect("two groups");
+    let sim_def = SimulationDef {
+        mode: Mode::Quasistatic,
+        pinned_vertices: vec![420, 421],
+        ..SimulationDef::default()
+    };
+    let mut sim = Simulation::new(&hierarchy, &sim_def).expect("group 0 pinned");
+    assert_eq!(sim.add_handle(0, &[0]).unwrap_err().code, Status::InvalidArgument);
+    assert_eq!(sim.add_handle(0, &[439, 440]).expect("group 1"), 1);
+    sim.set_handle_motion(1, &HandleMotion { offset: [0.05, 0.0, 0.0], ..Default::default() })
+        .expect("drag it");
+    sim.step_preview(2).expect("preview");
+    let coarse = sim.positions(0).unwrap();
+    let at_corner = |p: &[f64; 3]| (p[0] - 1.05).abs() < 1e-12 && (p[1] - 1.0).abs() < 1e-12;
+    assert_eq!(coarse.iter().filter(|p| at_corner(p)).count(), 1);
+    sim.refine().expect("refine");
+    let fine = sim.positions(1).unwrap();
+    assert!(at_corner(&fine[440]), "{:?}", fine[440]);
+    assert!(fine[420][0].abs() < 1e-12 && (fine[420][1] - 1.0).abs() < 1e-12);
 }
