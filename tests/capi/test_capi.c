@@ -855,6 +855,43 @@ static void test_strain_correction(void) {
   ps_sim_destroy(sim);
 }
 
+/* A strip clamped on its first two columns, its last two on a second handle: a rotation
+ * support free to translate (a guided end) from the scene key, or a plain clamp switched to
+ * one by ps_sim_set_handle_support(). Both step bit for bit alike. */
+static const char* guided_strip(const char* end_keys) {
+  static char json[1024];
+  snprintf(json, sizeof json,
+           "{ \"simulation\": { \"mode\": \"quasistatic\" }, \"gravity\": [0, 0, -9.81],"
+           "  \"effects\": [\"membrane\", \"bending\", \"gravity\"],"
+           "  \"bodies\": [ { \"mesh\": { \"generator\": \"grid\", \"width\": 0.4,"
+           "                  \"height\": 0.1, \"nx\": 8, \"ny\": 2 },"
+           "                  \"material\": { \"youngs_modulus\": 1e9 } } ],"
+           "  \"handles\": [ { \"body\": 0, \"vertices\": [0, 1, 9, 10, 18, 19] },"
+           "                 { \"body\": 0, \"vertices\": [7, 8, 16, 17, 25, 26] %s } ] }",
+           end_keys);
+  return json;
+}
+
+static void test_rotation_support_round_trip(void) {
+  ps_sim *keyed = NULL, *coded = NULL;
+  CHECK(ps_sim_create_from_scene(guided_strip(", \"support\": \"rotation\", \"axes\": \"\""), NULL,
+                                 &keyed) == PS_OK);
+  CHECK(ps_sim_create_from_scene(guided_strip(""), NULL, &coded) == PS_OK);
+  if (!keyed || !coded) return;
+  CHECK(ps_sim_set_handle_support(coded, 1, PS_SUPPORT_ROTATION, 0) == PS_OK);
+  double a[81], b[81];
+  size_t count = 0;
+  for (int step = 0; step < 2; ++step) {
+    CHECK(ps_sim_step_preview(keyed, 1) == PS_OK && ps_sim_step_preview(coded, 1) == PS_OK);
+    CHECK(ps_sim_get_positions(keyed, 0, a, 81, &count) == PS_OK && count == 81);
+    CHECK(ps_sim_get_positions(coded, 0, b, 81, &count) == PS_OK && count == 81);
+    CHECK(memcmp(a, b, sizeof a) == 0);
+  }
+  CHECK(a[3 * 26 + 2] < -1e-6 && fabs(a[3 * 26 + 2] - a[3 * 25 + 2]) < 1e-15); /* sank, level */
+  ps_sim_destroy(keyed);
+  ps_sim_destroy(coded);
+}
+
 /* Several vertex groups in one hierarchy: a PSQ simulation of two levels holds the top-left
  * corner as group 0 (ps_sim_def.pinned_vertices) and the top-right corner as group 1
  * (ps_sim_add_handle), the second dragged sideways, on every level. */
@@ -935,6 +972,7 @@ int main(int argc, char** argv) {
   test_handle_keyframes();
   test_levels();
   test_vertex_groups();
+  test_rotation_support_round_trip();
   test_progressive();
   test_crossing_input();
   test_progressive_obstacle();

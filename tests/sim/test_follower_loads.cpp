@@ -9,6 +9,8 @@
 #include "energy/follower_loads.hpp"
 #include "scene/scene_json.hpp"
 #include "sim/level_simulation.hpp"
+#include "sim/load_forces.hpp"
+#include "support/energy_checks.hpp"
 #include "support/expect_error.hpp"
 #include "support/sze_strip.hpp"
 
@@ -135,4 +137,24 @@ TEST(FollowerLoads, AimTurnsTheForcesAlongTheUnitVertexNormals) {
   EXPECT_LT((g.segment<3>(9) - Vec3(0, 5.0, 0)).norm(), 1e-15);
   EXPECT_EQ(g.segment<6>(3).norm(), 0.0) << "unloaded vertices";
   EXPECT_DOUBLE_EQ(term.aim(x), 0.0) << "no turn since the last aim";
+}
+
+TEST(FollowerLoads, DerivativesMatchFiniteDifferencesAndTheMagnitudesSumToTheLoad) {
+  // Within a solve the lagged potential −Σ s a n·x is linear: its gradient against central
+  // differences, no Hessian entries; the normal force spread by area or mass sums to N.
+  Scene scene = follower_cantilever(20, 2.0);
+  const ShellModel model = build_shell_model(scene);
+  for (LoadDistribution d : {LoadDistribution::area, LoadDistribution::mass}) {
+    scene.loads[0].distribution = d;
+    const std::vector<NormalLoad> loads = normal_loads(scene, model);
+    ASSERT_EQ(loads.size(), 1u);
+    EXPECT_NEAR(loads[0].magnitudes.sum(), scene.loads[0].normal_force,
+                1e-14 * scene.loads[0].normal_force);
+    FollowerLoads term(loads, model.rest.faces, model.rest.num_vertices());
+    term.aim(perturbed(model.rest.vertices, 0.05, 7));  // aimed at one state ...
+    term.set_factor(0, 0.6);
+    const Vector x = perturbed(model.rest.vertices, 0.05, 8);  // ... differentiated at another
+    expect_derivatives_match_finite_differences(term, x, 1e-6, 1e-8, 1e-9);
+    EXPECT_EQ(term.hessian_entry_count(), 0u);
+  }
 }

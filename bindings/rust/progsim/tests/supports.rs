@@ -69,6 +69,12 @@ fn a_rotation_support_free_to_translate_leaves_the_weight_to_the_clamp() {
     let guided = sim.handle_reaction(0, 1).expect("guided reaction");
     assert!((clamp.force[2] - weight).abs() < 1e-6 * weight, "{}", clamp.force[2]);
     assert!(guided.force.iter().all(|f| f.abs() < 1e-4 * weight), "{:?}", guided.force);
+    // The same support from the scene key steps bit for bit alike.
+    let keyed_scene =
+        propped_strip().replace(r#""axes": "z""#, r#""support": "rotation", "axes": """#);
+    let mut keyed = Simulation::from_scene(&keyed_scene, None).expect("valid scene");
+    keyed.step_preview(1).expect("one load step");
+    assert_eq!(keyed.positions(0).unwrap(), sim.positions(0).unwrap());
     assert_eq!(
         sim.set_handle_support(1, Support::Position, Axes::NONE).unwrap_err().code,
         Status::InvalidScene
