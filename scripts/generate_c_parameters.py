@@ -54,6 +54,9 @@ def fields(table_text):
     for match in ROW.finditer(table_text):
         group, name, default, unit, lo, lo_in, hi, hi_in, integer, doc = match.groups()
         is_int = integer.strip() == "true"
+        if is_int:  # an int32_t field must hold its range and default
+            for value in (lo, hi, default):
+                assert -(2**31) <= float(value) < 2**31, f"{group}.{name}: {value} exceeds int32"
         bounds = "[" if lo_in == "true" else "("
         bounds += f"{number(lo, is_int)}, {number(hi, is_int)}"
         bounds += "]" if hi_in == "true" else ")"

@@ -79,15 +79,16 @@ std::vector<int> listed_groups(const ps_hierarchy_def& def, std::size_t num_vert
              "num_vertex_group_ids = " + std::to_string(def.num_vertex_group_ids) +
                  " must be the mesh's vertex count, " + std::to_string(num_vertices));
   std::vector<int> groups(def.vertex_group_ids, def.vertex_group_ids + num_vertices);
-  const int count = 1 + *std::max_element(groups.begin(), groups.end());
-  std::vector<bool> used(static_cast<std::size_t>(std::max(count, 0)), false);
-  for (std::size_t v = 0; v < num_vertices; ++v) {
-    if (groups[v] < -1)
+  for (std::size_t v = 0; v < num_vertices; ++v)  // gapless groups are fewer than the vertices
+    if (groups[v] < -1 || static_cast<std::size_t>(std::max(groups[v], 0)) >= num_vertices)
       api_fail(PS_ERROR_INVALID_ARGUMENT, "vertex_group_ids[" + std::to_string(v) +
                                               "] = " + std::to_string(groups[v]) +
-                                              " must be -1 (no group) or a group >= 0");
-    if (groups[v] >= 0) used[groups[v]] = true;
-  }
+                                              " must be -1 (no group) or a group in [0, " +
+                                              std::to_string(num_vertices) + ")");
+  const int count = 1 + *std::max_element(groups.begin(), groups.end());
+  std::vector<bool> used(static_cast<std::size_t>(count), false);
+  for (int g : groups)
+    if (g >= 0) used[g] = true;
   for (int g = 0; g < count; ++g)
     if (!used[g])
       api_fail(PS_ERROR_INVALID_ARGUMENT, "vertex_group_ids: group " + std::to_string(g) +

@@ -29,7 +29,9 @@ class EnergyTerm {
   virtual std::size_t hessian_entry_count() const = 0;
 
   /// Writes the DOF row and column of each Hessian triplet (called once, at set-up).
-  /// Both arrays have hessian_entry_count() entries. Duplicates are summed.
+  /// Both arrays have hessian_entry_count() entries. Duplicates are summed. Both triangles:
+  /// Problem keeps the lower one after reducing, and with shared DOFs (set_shared_dofs) an
+  /// entry (i, j) and its mirror (j, i) can land on one reduced diagonal, where both count.
   virtual void hessian_pattern(int* rows, int* cols) const = 0;
 
   /// Writes the value of each Hessian triplet, in the order of hessian_pattern().
@@ -52,7 +54,7 @@ class EnergyTerm {
   virtual bool has_fixed_pattern() const { return true; }
 
   /// Terms without a fixed pattern: appends (row, column, value) triplets of ∇²E_k(x) in full
-  /// DOF indices (duplicates are summed), element blocks PSD-projected if asked.
+  /// DOF indices, both triangles (duplicates are summed), element blocks PSD-projected if asked.
   virtual void append_hessian_triplets(const Vector& /*x*/, bool /*project_psd*/,
                                        std::vector<Eigen::Triplet<double>>& /*out*/) const {}
 };

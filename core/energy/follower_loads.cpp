@@ -10,6 +10,9 @@
 namespace progsim {
 namespace {
 
+/// Bounds of Aitken's relaxation factor ω (outside: ω = 1, plain lagging).
+constexpr double kMinRelaxation = 0.05, kMaxRelaxation = 20.0;
+
 /// DeadLoads of the loads' vertices with zero forces (aimed by aim()).
 std::vector<VertexForces> unaimed(const std::vector<NormalLoad>& loads) {
   std::vector<VertexForces> out;
@@ -50,7 +53,11 @@ void FollowerLoads::measure_normals(const Vector& x) {
                  c = x.segment<3>(3 * faces_(f, 2));
       normal += (b - a).cross(c - a);
     }
-    target_.segment<3>(3 * static_cast<Eigen::Index>(i)) = normal.normalized();
+    const auto at = 3 * static_cast<Eigen::Index>(i);
+    // A vertex whose faces' normals cancel (or have no area) keeps its direction: a load that
+    // vanished would read as settled.
+    target_.segment<3>(at) =
+        normal.squaredNorm() > 0.0 ? Vec3(normal.normalized()) : Vec3(directions_.segment<3>(at));
   }
 }
 
@@ -85,14 +92,18 @@ double FollowerLoads::aim(const Vector& x) {
   return turn;
 }
 
-double FollowerLoads::relax(const Vector& x) {
+double FollowerLoads::relax(const Vector& x, double settled) {
   measure_normals(x);
   const double turn = largest_turn();
-  residual_ = target_ - directions_;  // r = n̄ − n
-  if (have_residual_) {               // Küttler and Wall 2008, eq. 44
-    const Vector change = residual_ - previous_residual_;
-    const double squared = change.squaredNorm();
-    if (squared > 0.0) omega_ = -omega_ * previous_residual_.dot(change) / squared;
+  if (!(turn > settled)) return turn;  // settled (or NaN): the forces x was solved for stay
+  residual_ = target_ - directions_;   // r = n̄ − n
+  if (have_residual_) {                // Küttler and Wall 2008, eq. 44
+    change_ = residual_ - previous_residual_;
+    const double squared = change_.squaredNorm();
+    if (squared > 0.0) omega_ = -omega_ * previous_residual_.dot(change_) / squared;
+    // Safeguard: a factor outside [kMinRelaxation, kMaxRelaxation] (nearly equal residuals)
+    // would tip directions into the surface or reverse them; plain lagging then.
+    if (!(omega_ >= kMinRelaxation && omega_ <= kMaxRelaxation)) omega_ = 1.0;
   }
   directions_ += omega_ * residual_;
   for (Eigen::Index i = 0; i < directions_.size(); i += 3) directions_.segment<3>(i).normalize();

@@ -39,8 +39,9 @@ class FollowerLoads : public EnergyTerm {
   /// n = n̄(x(n)) (Irons and Tuck 1969; Küttler and Wall 2008, eq. 44): the plain step first,
   /// then n += ω (n̄ − n) with ω = −ω_prev r_prevᵀ(r − r_prev) / ‖r − r_prev‖², r = n̄ − n, which
   /// converges where plain lagging diverges (a cantilever's end load at P L² / E I = 4).
-  /// Returns the largest angle (rad) between n̄(x) and the directions before the call.
-  double relax(const Vector& x);
+  /// Returns the largest angle (rad) between n̄(x) and the directions before the call, and
+  /// changes nothing when it is at most `settled` (the forces x was solved for stay).
+  double relax(const Vector& x, double settled);
 
   /// Scales load k by s (1: its full force), as DeadLoads::set_factor.
   void set_factor(std::size_t k, double s) { aimed_.set_factor(k, s); }
@@ -56,8 +57,8 @@ class FollowerLoads : public EnergyTerm {
   std::vector<NormalLoad> loads_;
   std::vector<std::vector<int>> vertex_faces_;  // per loaded vertex (stacked): its faces
   Faces faces_;
-  Vector directions_, target_, residual_, previous_residual_;  // stacked 3-blocks
-  double omega_ = 1.0;                                         // Aitken's relaxation factor
+  Vector directions_, target_, residual_, previous_residual_, change_;  // stacked 3-blocks
+  double omega_ = 1.0;  // Aitken's relaxation factor
   bool lagged_ = false, have_residual_ = false;
   DeadLoads aimed_;  // the forces a n of the current directions
 };

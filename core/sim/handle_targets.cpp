@@ -66,9 +66,17 @@ void HandleTargets::apply(double t, Vector& x) const {
     x[prescribed_.dofs[i]] = target(prescribed_, i, t);
 }
 
-void HandleTargets::carry(double t_from, double t, Vector& x) const {
+Vector HandleTargets::carried_targets(double t) const {
+  Vector out(carried_.dofs.size());
+  for (std::size_t i = 0; i < carried_.dofs.size(); ++i) out[i] = target(carried_, i, t);
+  return out;
+}
+
+Vector HandleTargets::carried_rest() const {
+  Vector out(carried_.dofs.size());
   for (std::size_t i = 0; i < carried_.dofs.size(); ++i)
-    x[carried_.dofs[i]] += target(carried_, i, t) - target(carried_, i, t_from);
+    out[i] = carried_.rest[i][carried_.dofs[i] % 3];
+  return out;
 }
 
 }  // namespace progsim

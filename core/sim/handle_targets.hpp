@@ -35,9 +35,11 @@ class HandleTargets {
   /// Mask (3|V|) of the DOFs a script moves: prescribed and carried.
   std::vector<bool> scripted_dofs(int num_vertices) const;
 
-  /// Adds to x (3|V|) the change of the script from time t_from to t (s) at every carried DOF:
-  /// the rotation a rotation support's group turns through, its free translation kept.
-  void carry(double t_from, double t, Vector& x) const;
+  /// The script's coordinate of every carried DOF at time t (the order of carried_dofs()): a
+  /// rotation support's group turned as its script turns it, before its free translation.
+  Vector carried_targets(double t) const;
+  /// The carried DOFs' rest coordinates: the pose a group embodies before any step.
+  Vector carried_rest() const;
 
   /// The carried DOFs (3v + k) and the handle of each.
   const std::vector<int>& carried_dofs() const { return carried_.dofs; }

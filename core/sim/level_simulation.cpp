@@ -165,6 +165,11 @@ void LevelSimulation::build_problem() {
   problem->finalize();
   problem_ = std::move(problem);
   scripted_ = handles_.scripted_dofs(n);
+  // A new simulation's groups embody their rest pose, so the first step turns them to the
+  // script's (a keyframe's first rotation too); a rebuild keeps the pose unless its carried
+  // DOFs changed, when a group holds the pose it has now.
+  if (carried_pose_.size() != static_cast<Eigen::Index>(handles_.carried_dofs().size()))
+    carried_pose_ = steps_taken_ == 0 ? handles_.carried_rest() : handles_.carried_targets(time());
   inertia_ = inertia;
   penalty_ = penalty;
   ramped_ = std::move(ramped);
@@ -292,7 +297,15 @@ double LevelSimulation::advance_scripts(double t, double decrement_scale, Newton
   script_target_ = x_;
   handles_.apply(t, script_target_);
   carried_step_.setZero(x_.size());
-  handles_.carry(time(), t, carried_step_);
+  const Vector carried_change = handles_.carried_targets(t) - carried_pose_;
+  for (std::size_t i = 0; i < handles_.carried_dofs().size(); ++i)
+    carried_step_[handles_.carried_dofs()[i]] = carried_change[static_cast<Eigen::Index>(i)];
+  const double reached = script_rounds(t, decrement_scale, report);
+  carried_pose_ += reached * carried_change;  // a turn contact cut short goes on next solve
+  return reached;
+}
+
+double LevelSimulation::script_rounds(double t, double decrement_scale, NewtonReport& report) {
   const Positions obstacle_target = obstacles_->at(t);  // empty without contact
   double reached = 0.0;
   for (int round = 0; round < kMaxScriptRounds; ++round) {
@@ -360,7 +373,7 @@ bool LevelSimulation::carry_shell(const Positions& obstacle_target) {
 int LevelSimulation::follow_normals(double decrement_scale, NewtonReport& report) {
   const double settled = std::max(kFollowerAngleTolerance, scene_.solver.tolerance);
   int lags = 0;
-  while (lags < kMaxFollowerLags && ramped_.followers->relax(x_) > settled) {
+  while (lags < kMaxFollowerLags && ramped_.followers->relax(x_, settled) > settled) {
     ++lags;
     const NewtonReport again =
         solver_.minimize(*problem_, x_, scene_.solver, decrement_scale, length_);

@@ -171,15 +171,17 @@ class LevelSimulation {
   ContactPotential& add_contact(Problem& problem);
   /// Scales pressures, gravity and loads to their ramps at time t.
   void apply_ramps(double t);
-  /// After a solve from a fitted start: offsets and strain limits moved back toward their own
-  /// values, what is still fitted counted in `record`.
   /// Moves the state to a step's given start and fits the contact offsets and strain limits to it.
   void start_step_at(const Vector& start);
+  /// After a solve from a fitted start: offsets and strain limits moved back toward their own
+  /// values, what is still fitted counted in `record`.
   void restore_fitted(StepRecord& record);
   /// Moves handles and obstacles toward their scripts at time t, in rounds with a Newton solve
   /// between them when contact (CCD) or a face next to a handle (max_handle_step()) stops
   /// them; returns the fraction reached.
   double advance_scripts(double t, double decrement_scale, NewtonReport& report);
+  /// advance_scripts()' rounds toward script_target_ and carried_step_.
+  double script_rounds(double t, double decrement_scale, NewtonReport& report);
   /// The fraction of script_step_ (and of the obstacles' way to `obstacle_target`) the next
   /// round may take; with contact may add carried shell motion to script_step_.
   double max_script_step(const Positions& obstacle_target);
@@ -211,7 +213,10 @@ class LevelSimulation {
   Inertia* penalty_ = nullptr;             // owned by problem_, null without consistency penalty
   HandleTargets finest_handles_;           // the finest level's handles, held exactly by proxy_
   Vector x_, v_, x_previous_, script_target_, script_step_, gradient_;
-  Vector carried_step_;         // a step's script change at rotation supports' carried DOFs
+  Vector carried_step_;  // a step's script change at rotation supports' carried DOFs (3|V|)
+  // The script pose the carried DOFs embody (order of HandleTargets::carried_dofs()): the rest
+  // pose at first, advanced by the part of each step's change the rounds reached.
+  Vector carried_pose_;
   std::vector<bool> scripted_;  // DOFs the scripts move (prescribed or carried)
   int steps_taken_ = 0;
   double length_ = 1.0;

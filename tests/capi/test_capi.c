@@ -915,6 +915,9 @@ static void test_vertex_groups(void) {
   ids[439] = ids[440] = 2; /* a gap: group 1 is empty */
   CHECK_ERROR(ps_hierarchy_create_from_file(&hdef, mesh, &h), PS_ERROR_INVALID_ARGUMENT,
               ps_last_error(), "group 1 has no vertex");
+  ids[439] = ids[440] = 2147483647; /* far beyond any gapless group */
+  CHECK_ERROR(ps_hierarchy_create_from_file(&hdef, mesh, &h), PS_ERROR_INVALID_ARGUMENT,
+              ps_last_error(), "vertex_group_ids[439] = 2147483647");
   ids[439] = ids[440] = 1;
   const int32_t left[2] = {420, 421}, right[2] = {439, 440}, stray[1] = {0};
   hdef.pinned_vertices = left;

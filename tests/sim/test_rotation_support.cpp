@@ -115,6 +115,23 @@ TEST(RotationSupport, TurningTheEndRollsTheStripIntoSzeArcs) {
   }
 }
 
+TEST(RotationSupport, AKeyframedPoseHeldFromTheStartIsReachedInTheFirstSteps) {
+  // One key at t = 0 turning the end by π/2: the group embodies its rest pose until the first
+  // step, which turns it there (and no later step turns it again), so the strip ends on Sze's
+  // arc of θ = π/2.
+  Scene scene = strip_scene(40, 2);
+  MotionKeyframe key;
+  key.axis = Vec3(0, -1, 0);
+  key.angle = 0.5 * kPi;
+  scene.handles[1].motion.keyframes = {key};
+  LevelSimulation sim(scene);
+  for (int s = 0; s < 2; ++s) ASSERT_EQ(sim.step().newton.stop, NewtonStop::converged);
+  const double theta = 0.5 * kPi;
+  const Vec3 exact(kSzeLength * std::sin(theta) / theta, 0.5 * kSzeWidth,
+                   kSzeLength * (1.0 - std::cos(theta)) / theta);
+  EXPECT_LT((centroid(sim, scene.handles[1]) - exact).norm(), 0.02 * kSzeLength);
+}
+
 TEST(RotationSupport, AFreelyFallingGroupKeepsItsShapeAndFallsAtG) {
   // Dynamic: a rotation support held still (no script) on a strip with nothing else holding it
   // translates freely, so the strip falls as a rigid body would: implicit Euler from rest gives

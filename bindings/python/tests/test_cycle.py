@@ -173,6 +173,6 @@ def test_scene_text_with_base_dir_and_dict():
 
 
 def test_library_version():
-    assert progsim.library_version() == "0.19.0"
+    assert progsim.library_version() == "0.20.0"
     assert progsim.library_version_number() == progsim.HEADER_VERSION
     assert progsim.status_name(2) == "PS_ERROR_INVALID_MESH"

@@ -44,7 +44,7 @@ from ._errors import (  # noqa: F401 - re-exported through __all__
 )
 
 #: Version of this Python package.
-__version__ = "0.19.0"
+__version__ = "0.20.0"
 
 #: The header version these bindings were compiled against (major·10000 + minor·100 + patch).
 HEADER_VERSION: int = _lib.PS_VERSION_HEADER
@@ -76,7 +76,7 @@ from .simulation import (  # noqa: E402
 
 
 def library_version() -> str:
-    """The loaded libprogsim's version as text, e.g. ``"0.19.0"``."""
+    """The loaded libprogsim's version as text, e.g. ``"0.20.0"``."""
     return _ffi.string(_lib.ps_version_string()).decode("ascii")
 
 
