@@ -42,6 +42,8 @@ FollowerLoads::FollowerLoads(std::vector<NormalLoad> loads, const Faces& faces, 
       vertex_faces_.push_back(faces_of[v]);
     }
   directions_ = Vector::Zero(3 * static_cast<Eigen::Index>(vertex_faces_.size()));
+  for (const NormalLoad& load : loads_)
+    forces_.emplace_back(static_cast<Eigen::Index>(load.vertices.size()), 3);
 }
 
 void FollowerLoads::measure_normals(const Vector& x) {
@@ -73,10 +75,9 @@ double FollowerLoads::largest_turn() const {
 void FollowerLoads::aim_forces() {
   Eigen::Index i = 0;
   for (std::size_t k = 0; k < loads_.size(); ++k) {
-    const NormalLoad& load = loads_[k];
-    Positions forces(static_cast<Eigen::Index>(load.vertices.size()), 3);
+    Positions& forces = forces_[k];
     for (Eigen::Index j = 0; j < forces.rows(); ++j, i += 3)
-      forces.row(j) = load.magnitudes[j] * directions_.segment<3>(i).transpose();  // a n
+      forces.row(j) = loads_[k].magnitudes[j] * directions_.segment<3>(i).transpose();  // a n
     aimed_.set_forces(k, forces);
   }
 }

@@ -58,7 +58,8 @@ class FollowerLoads : public EnergyTerm {
   std::vector<std::vector<int>> vertex_faces_;  // per loaded vertex (stacked): its faces
   Faces faces_;
   Vector directions_, target_, residual_, previous_residual_, change_;  // stacked 3-blocks
-  double omega_ = 1.0;  // Aitken's relaxation factor
+  std::vector<Positions> forces_;  // per load: the forces a n aim_forces() hands to aimed_
+  double omega_ = 1.0;             // Aitken's relaxation factor
   bool lagged_ = false, have_residual_ = false;
   DeadLoads aimed_;  // the forces a n of the current directions
 };

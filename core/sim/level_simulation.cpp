@@ -121,9 +121,12 @@ void LevelSimulation::build_models() {
     model_.vertex_masses = prolonged_masses(level_.to_finest, finest.vertex_masses);
   finest_handles_ = HandleTargets(scene_, finest.rest.vertices, finest_handles);
   handles_ = HandleTargets(scene_, model_.rest.vertices, level_groups(h, level_.level));
+  // Both hold what a coarse level's proxy cannot: a group free to translate, a lagged normal.
+  const std::string coarse = ": level " + std::to_string(level_.level) + " is a coarse level";
   if (!handles_.carried_dofs().empty())
-    fail(Status::unsupported, "a rotation support needs a direct simulation: level " +
-                                  std::to_string(level_.level) + " is a coarse level");
+    fail(Status::unsupported, "a rotation support needs a direct simulation" + coarse);
+  if (has_follower_loads(scene_))
+    fail(Status::unsupported, "a follower load (normal_force) needs a direct simulation" + coarse);
   finest_ =
       !level_.to_finest.empty() ? std::make_shared<const ShellModel>(std::move(finest)) : nullptr;
 }
@@ -203,10 +206,7 @@ void LevelSimulation::add_elastics(Problem& problem, RampedTerms& ramped) const 
   if (!scene_.loads.empty())
     ramped.loads =
         &problem.add_term(std::make_unique<DeadLoads>(level_loads(), model_.rest.num_vertices()));
-  if (!has_follower_loads(scene_)) return;
-  if (!level_.is_finest())
-    fail(Status::unsupported, "a follower load (normal_force) needs a direct simulation: level " +
-                                  std::to_string(level_.level) + " is a coarse level");
+  if (!has_follower_loads(scene_)) return;  // coarse levels refused them (build_models)
   ramped.followers = &problem.add_term(std::make_unique<FollowerLoads>(
       normal_loads(scene_, model_), model_.rest.faces, model_.rest.num_vertices()));
 }
@@ -215,9 +215,6 @@ void LevelSimulation::add_proxy_elastics(Problem& problem, RampedTerms& ramped) 
   // A dynamic preview's gravity acts on the prolonged masses M_l its inertia uses: through the
   // prolongation it would also act on the offsets a(x), a torque that makes a free fall deform.
   const bool dynamic = scene_.mode == StepMode::dynamic;
-  if (has_follower_loads(scene_))
-    fail(Status::unsupported, "a follower load (normal_force) needs a direct simulation: level " +
-                                  std::to_string(level_.level) + " is a preview level");
   if (dynamic && scene_.effects.has(Effect::gravity))
     ramped.gravity =
         &problem.add_term(std::make_unique<Gravity>(model_.vertex_masses, scene_.gravity));
