@@ -146,9 +146,6 @@ void validate_handle(const Scene& scene, std::size_t h) {
                                   "(progressive levels hold their handles by position only)");
 }
 
-/// Body index, a non-empty group of vertices in range, finite values, a ramp ≥ 0 and, with a
-/// moment, a group that can carry it (couple_forces with equal weights: whether it can does not
-/// depend on the weights).
 /// A follower load: a finite force, a direct simulation, and a face on every vertex (its normal).
 void validate_follower(const Scene& scene, const Load& load, const std::string& where) {
   if (!std::isfinite(load.normal_force))
@@ -166,6 +163,9 @@ void validate_follower(const Scene& scene, const Load& load, const std::string& 
                                       " lies on no face, so it has no normal");
 }
 
+/// Body index, a non-empty group of vertices in range, finite values, a ramp ≥ 0 and, with a
+/// moment, a group that can carry it (couple_forces with equal weights: whether it can does not
+/// depend on the weights).
 void validate_load(const Scene& scene, std::size_t k) {
   const Load& load = scene.loads[k];
   const std::string where = "loads[" + std::to_string(k) + "]";
