@@ -64,8 +64,8 @@ class ProgressiveAnimation {
   virtual std::unique_ptr<LevelSimulation> direct_level(int level) const = 0;
 };
 
-/// Progressive Dynamics for a scene of shells, its volumetric form (VPD) for a scene with a
-/// solid body. Throws as the drivers' constructors do.
+/// Progressive Dynamics for a scene of shells, its volumetric form (VPD) for a scene of solids.
+/// Throws as the drivers' constructors do (a scene that mixes both: Error(unsupported)).
 std::unique_ptr<ProgressiveAnimation> make_progressive_animation(Scene scene);
 
 }  // namespace progsim

@@ -73,16 +73,13 @@ void validate_body_geometry(const Body& body) {
                                    "boundary (tet_boundary_faces)");
 }
 
-/// Volumetric bodies: not mixed with shells yet, and the effects that act on them.
+/// Shell and volumetric bodies, and the effects that act on each kind: membrane and bending on
+/// shells, elasticity on solids. A scene may mix both kinds (solid–shell contact).
 void validate_solids(const Scene& scene) {
   const auto solids = std::count_if(scene.bodies.begin(), scene.bodies.end(), is_solid);
-  const auto count = static_cast<long>(scene.bodies.size());
-  if (solids > 0 && solids < count)
-    fail(Status::unsupported,
-         "the scene mixes shell and volumetric (tet) bodies, which this version cannot simulate "
-         "together yet");
+  const auto shells = static_cast<long>(scene.bodies.size()) - solids;
   for (Effect e : {Effect::membrane, Effect::bending, Effect::strain_limit})
-    if (solids > 0 && scene.effects.has(e))
+    if (shells == 0 && solids > 0 && scene.effects.has(e))
       fail(Status::invalid_scene, std::string("the '") + effect_name(e) +
                                       "' effect acts on shells, and the scene's bodies are "
                                       "volumetric: use 'elasticity'");

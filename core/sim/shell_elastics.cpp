@@ -17,25 +17,53 @@ Faces body_faces(const ShellModel& model, int b) {
                                      model.face_offset[b + 1] - model.face_offset[b]);
 }
 
-/// The membrane term of `model` under the given model.
-std::unique_ptr<EnergyTerm> membrane_term(const ShellModel& model, MembraneModel membrane) {
-  const Positions& rest = model.rest.vertices;
-  if (membrane == MembraneModel::tension_field)
-    return std::make_unique<TensionFieldMembrane>(rest, model.rest.faces, model.face_materials);
-  return std::make_unique<NeoHookeanMembrane>(rest, model.rest.faces, model.face_materials);
+/// The faces that are shells, with their materials and hinges: in a scene that mixes shells
+/// and solids, the solids' boundary faces carry no membrane or bending (they are no shell), so
+/// those terms leave them out rather than evaluate them at zero thickness.
+struct ShellSurface {
+  Faces faces;
+  std::vector<ShellMaterial> materials;
+  std::vector<Hinge> hinges;
+};
+
+/// The shell bodies' faces of `model`, whose bodies are those of `scene`.
+ShellSurface shell_surface(const Scene& scene, const ShellModel& model) {
+  if (model.tets.rows() == 0)
+    return {model.rest.faces, model.face_materials, model.topology.hinges};
+  ShellSurface out;
+  Eigen::Index rows = 0;
+  for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b)
+    if (!is_solid(scene.bodies[b])) rows += model.face_offset[b + 1] - model.face_offset[b];
+  out.faces.resize(rows, 3);
+  rows = 0;
+  for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
+    if (is_solid(scene.bodies[b])) continue;
+    const Faces faces = body_faces(model, b);
+    out.faces.middleRows(rows, faces.rows()) = faces;
+    rows += faces.rows();
+    out.materials.insert(out.materials.end(), model.face_materials.begin() + model.face_offset[b],
+                         model.face_materials.begin() + model.face_offset[b + 1]);
+  }
+  out.hinges = build_topology(out.faces, model.rest.num_vertices()).hinges;
+  return out;
 }
 
-/// The bending term of `model`, of the model its materials select (validate_scene() makes all
+/// The membrane term of `surface` under the given model.
+std::unique_ptr<EnergyTerm> membrane_term(const Positions& rest, const ShellSurface& surface,
+                                          MembraneModel membrane) {
+  if (membrane == MembraneModel::tension_field)
+    return std::make_unique<TensionFieldMembrane>(rest, surface.faces, surface.materials);
+  return std::make_unique<NeoHookeanMembrane>(rest, surface.faces, surface.materials);
+}
+
+/// The bending term of `surface`, of the model its materials select (validate_scene() makes all
 /// bodies agree).
-std::unique_ptr<EnergyTerm> bending_term(const ShellModel& model) {
-  const Positions& rest = model.rest.vertices;
-  const bool midedge = !model.face_materials.empty() &&
-                       model.face_materials.front().bending_model == BendingModel::midedge;
+std::unique_ptr<EnergyTerm> bending_term(const Positions& rest, const ShellSurface& surface) {
+  const bool midedge = !surface.materials.empty() &&
+                       surface.materials.front().bending_model == BendingModel::midedge;
   if (midedge)
-    return std::make_unique<MidedgeBending>(rest, model.rest.faces, model.topology.hinges,
-                                            model.face_materials);
-  return std::make_unique<HingeBending>(rest, model.rest.faces, model.topology.hinges,
-                                        model.face_materials);
+    return std::make_unique<MidedgeBending>(rest, surface.faces, surface.hinges, surface.materials);
+  return std::make_unique<HingeBending>(rest, surface.faces, surface.hinges, surface.materials);
 }
 
 }  // namespace
@@ -45,9 +73,11 @@ ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, b
   ShellElastics out;
   const EffectSet& fx = scene.effects;
   const Positions& rest = model.rest.vertices;
-  if (fx.has(Effect::membrane)) out.terms.push_back(membrane_term(model, membrane));
+  const bool shells = fx.has(Effect::membrane) || fx.has(Effect::bending);
+  const ShellSurface surface = shells ? shell_surface(scene, model) : ShellSurface{};
+  if (fx.has(Effect::membrane)) out.terms.push_back(membrane_term(rest, surface, membrane));
   if (fx.has(Effect::bending)) {
-    out.terms.push_back(bending_term(model));
+    out.terms.push_back(bending_term(rest, surface));
     auto* hinge = dynamic_cast<HingeBending*>(out.terms.back().get());
     // In a dynamic step the inertia M/h² keeps the Newton matrix positive definite, so hinges
     // take the Gauss–Newton block 2c ∇θ∇θᵀ instead of the clamped exact one (HingeProjection;

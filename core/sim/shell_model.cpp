@@ -27,7 +27,10 @@ ShellModel build_shell_model(const Scene& scene) {
     model.vertex_offset.push_back(first_vertex + body.mesh.num_vertices());
     model.face_offset.push_back(model.face_offset.back() + body.mesh.num_faces());
     ShellMaterial surface = body.material;
-    if (is_solid(body)) surface.thickness = 0.0;  // a solid's boundary is no shell
+    if (is_solid(body)) {  // a solid's boundary is no shell: no thickness, no strain limit
+      surface.thickness = 0.0;
+      surface.strain_limit = 0.0;
+    }
     model.face_materials.insert(model.face_materials.end(), body.mesh.num_faces(), surface);
     meshes.push_back(&body.mesh);
     append_tets(body, first_vertex, model);

@@ -470,6 +470,38 @@ static void test_scene(void) {
   ps_sim_destroy(sim);
 }
 
+/* A scene that mixes a shell and a solid runs directly; on several levels it is refused by name. */
+static void test_mixed_scene(void) {
+  const char* mixed =
+      "{\"effects\": [\"membrane\", \"bending\", \"elasticity\", \"gravity\", \"contact\"],"
+      " \"simulation\": {\"mode\": \"dynamic\", \"time_step\": 0.01, \"duration\": 0.03},"
+      " \"bodies\": [{\"name\": \"jelly\", \"mesh\": {\"generator\": \"tet_box\","
+      " \"size\": [0.3, 0.3, 0.3], \"cells\": [2, 2, 2]}},"
+      " {\"name\": \"cloth\", \"mesh\": {\"generator\": \"grid\", \"width\": 0.4,"
+      " \"height\": 0.4, \"nx\": 4, \"ny\": 4}, \"transform\": {\"rotate\": {\"axis\": [1, 0, 0], "
+      "\"degrees\": -90},"
+      " \"translate\": [-0.2, 0.2, 0.2]}}]";
+  char json[1024];
+  snprintf(json, sizeof json, "%s}", mixed);
+  ps_sim* sim = NULL;
+  int32_t kind = -1;
+  CHECK(ps_sim_create_from_scene(json, NULL, &sim) == PS_OK);
+  CHECK(ps_sim_get_kind(sim, &kind) == PS_OK && kind == PS_SIM_DIRECT);
+  CHECK(ps_sim_step_preview(sim, 2) == PS_OK);
+  enum { kMixedVertices = 27 + 25 };  // the jelly's 3³ tet vertices, then the cloth's 5²
+  double x[3 * kMixedVertices];
+  size_t count = 0;
+  CHECK(ps_sim_get_positions(sim, 0, x, 3 * kMixedVertices, &count) == PS_OK &&
+        count == 3 * kMixedVertices);
+  CHECK(x[3 * 27 + 1] < 0.2 && x[3 * 27 + 1] > 0.15);  // the cloth falls along −y (the default)
+  ps_sim_destroy(sim);
+  snprintf(json, sizeof json, "%s, \"progressive\": {\"levels\": [20]}}", mixed);
+  sim = NULL;
+  CHECK_ERROR(ps_sim_create_from_scene(json, NULL, &sim), PS_ERROR_UNSUPPORTED, ps_last_error(),
+              "mixes shells and volumetric");
+  CHECK(sim == NULL);
+}
+
 int main(void) {
   make_tet_box();
   ps_hierarchy* h = box_hierarchy();
@@ -484,6 +516,7 @@ int main(void) {
   test_closed_surface();
   test_direct();
   test_scene();
+  test_mixed_scene();
   if (failures) fprintf(stderr, "%d check(s) failed\n", failures);
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }

@@ -10,33 +10,16 @@
 #include <iostream>
 
 #include "common/error.hpp"
-#include "mesh/tet_boundary.hpp"
-#include "mesh/tet_generators.hpp"
 #include "scene/scene_json.hpp"
 #include "sim/level_simulation.hpp"
+#include "support/solid_box.hpp"
 
 using namespace progsim;
+using progsim::test_support::solid_box;
 
 namespace {
 
 constexpr double kG = 9.81;
-
-/// A solid box body of `cells`, its rest shape moved by `shift`.
-Body solid_box(const Vec3& size, int nx, int ny, int nz, const Vec3& shift, double e, double nu,
-               SolidModel model) {
-  TetMesh m = make_tet_box(size, nx, ny, nz);
-  m.vertices.rowwise() += shift.transpose();
-  Body b;
-  b.name = "solid";
-  b.mesh.faces = tet_boundary_faces(m);
-  b.mesh.vertices = m.vertices;
-  b.tets = m.tets;
-  b.material.youngs_modulus = e;
-  b.material.poisson_ratio = nu;
-  b.material.density = 1000.0;
-  b.solid_model = model;
-  return b;
-}
 
 Scene solid_scene(Body body, StepMode mode, double h, double duration) {
   Scene s;

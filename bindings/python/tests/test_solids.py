@@ -13,6 +13,7 @@ import progsim
 from conftest import REPO
 
 JELLY = REPO / "scenes" / "vpd_jelly_drop.json"
+CLOTH_ON_JELLY = REPO / "scenes" / "cloth_on_jelly.json"
 SPACING = 0.1  # m, the edge of one box cell
 STEP, GRAVITY = 0.01, 9.81  # s, m/s²
 
@@ -301,6 +302,18 @@ def test_a_volumetric_scene_animates_with_vpd():
         assert np.isfinite(sim.frame_positions(0, 2)).all()
         assert sim.frame_positions(0, 2)[:, 1].mean() < sim.frame_positions(0, 0)[:, 1].mean()
         assert "progressive animation" in repr(sim)
+
+
+def test_a_scene_mixing_a_cloth_and_a_jelly_runs_directly():
+    with progsim.Simulation.from_scene_file(CLOTH_ON_JELLY) as sim:
+        assert sim.kind == "direct"
+        start = sim.positions(0)
+        assert start.shape == (216 + 441, 3)  # the jelly's tet vertices, then the cloth's
+        sim.step_preview(3)
+        moved = sim.positions(0)
+        assert np.isfinite(moved).all()
+        assert moved[216:, 1].mean() < start[216:, 1].mean()  # the cloth falls along −y
+        assert moved[:216, 1].min() > 0.0  # the jelly stays on the ground
 
 
 def test_one_level_is_a_direct_simulation_of_the_solid():

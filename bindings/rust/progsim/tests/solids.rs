@@ -284,6 +284,20 @@ fn vpd_animates_a_free_fall_on_both_levels() {
 }
 
 #[test]
+fn a_scene_mixing_a_cloth_and_a_jelly_runs_directly() {
+    let mut sim = Simulation::from_scene_file(repo_path("scenes/cloth_on_jelly.json")).unwrap();
+    assert_eq!(sim.kind().unwrap(), SimulationKind::Direct);
+    let start = sim.positions(0).unwrap();
+    assert_eq!(start.len(), 216 + 441, "the jelly's tet vertices, then the cloth's");
+    sim.step_preview(3).unwrap();
+    let moved = sim.positions(0).unwrap();
+    assert!(moved.iter().flatten().all(|c| c.is_finite()));
+    let mean_y = |x: &[[f64; 3]]| x.iter().map(|p| p[1]).sum::<f64>() / x.len() as f64;
+    assert!(mean_y(&moved[216..]) < mean_y(&start[216..]), "the cloth falls along −y");
+    assert!(moved[..216].iter().all(|p| p[1] > 0.0), "the jelly stays on the ground");
+}
+
+#[test]
 fn a_volumetric_scene_animates_with_vpd() {
     let mut sim = Simulation::from_scene_file(repo_path("scenes/vpd_jelly_drop.json")).unwrap();
     assert_eq!(sim.kind().unwrap(), SimulationKind::VolumetricDynamics);
