@@ -318,12 +318,12 @@ void validate_scene(const Scene& scene) {
   check("solver", "max_cg_iterations", scene.solver.max_cg_iterations);
   if (!scene.gravity.allFinite()) fail(Status::invalid_scene, "gravity has a non-finite component");
   if (scene.bodies.empty()) fail(Status::invalid_scene, "the scene has no bodies");
+  const auto first_shell = std::find_if_not(scene.bodies.begin(), scene.bodies.end(), is_solid);
   for (const Body& body : scene.bodies) {
     validate_material(body.material);
-    if (body.material.bending_model != scene.bodies.front().material.bending_model)
+    if (!is_solid(body) && body.material.bending_model != first_shell->material.bending_model)
       fail(Status::invalid_scene, body.name + ": material.bending_model differs from " +
-                                      scene.bodies.front().name +
-                                      "'s (one bending model per scene)");
+                                      first_shell->name + "'s (one bending model per scene)");
     validate_body_geometry(body);
     if (!std::isfinite(body.pressure) || !(body.pressure_ramp >= 0.0) ||
         !std::isfinite(body.pressure_ramp))

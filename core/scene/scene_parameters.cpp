@@ -1,5 +1,6 @@
 #include "scene/scene_parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -16,7 +17,15 @@ struct Accessor {
   std::function<std::vector<double*>(Scene&)> slots;
 };
 
+/// Every body's field: one value for all. In a scene that mixes shells and solids a value would
+/// cross kinds (a cloth's modulus onto a jelly), so there it is refused.
 std::vector<double*> material_slots(Scene& scene, double ShellMaterial::*field) {
+  const auto& bodies = scene.bodies;
+  if (std::any_of(bodies.begin(), bodies.end(), is_solid) &&
+      !std::all_of(bodies.begin(), bodies.end(), is_solid))
+    fail(Status::unsupported,
+         "material parameters set one value on every body, and this scene mixes shells and "
+         "volumetric (tet) bodies: set each body's material in the scene");
   std::vector<double*> slots;
   for (Body& body : scene.bodies) slots.push_back(&(body.material.*field));
   return slots;
