@@ -6,8 +6,8 @@
 #include <array>
 #include <vector>
 
+#include "energy/edge_quadratic_bending.hpp"
 #include "energy/shell_material.hpp"
-#include "energy/stencil_term.hpp"
 #include "mesh/mesh_topology.hpp"
 
 namespace progsim {
@@ -42,7 +42,7 @@ namespace progsim {
 /// beam theory to 0.2 % on right-triangle grids of either diagonal pattern, but is 5–6 % too
 /// stiff on an irregular (randomly perturbed) grid without converging, as averaged edge normals
 /// are not consistent there (Grinspun et al. 2006 add a per-edge normal DOF for that).
-class MidedgeBending : public StencilTerm<6> {
+class MidedgeBending : public EdgeQuadraticBending<6> {
  public:
   /// @param rest rest positions (|V| × 3), m; defines ā, Ā and b̄
   /// @param faces triangles (|F| × 3), consistently oriented
@@ -54,28 +54,15 @@ class MidedgeBending : public StencilTerm<6> {
   MidedgeBending(const Positions& rest, const Faces& faces, const std::vector<Hinge>& hinges,
                  const std::vector<ShellMaterial>& face_materials);
 
-  const char* name() const override { return "bending"; }
-
-  /// The rest values s̄ (m) of face f's three edge quantities s_i (0 on boundary edges).
-  const Vec3& rest_edge_values(int f) const { return elements_[f].rest_values; }
+  using EdgeQuadraticBending<6>::rest_edge_values;
 
  protected:
-  double element_value(int e, const LocalVector& xe) const override;
-  void element_gradient(int e, const LocalVector& xe, LocalVector& g) const override;
-  void element_hessian(int e, const LocalVector& xe, LocalMatrix& h) const override;
-  void element_projected_hessian(int e, const LocalVector& xe, LocalMatrix& h) const override;
-
- private:
-  struct Element {
-    Mat3 stiffness;                ///< Q_f (J/m²): E_f = ½ (s − s̄)ᵀ Q_f (s − s̄)
-    Vec3 rest_values;              ///< s̄ (m)
-    std::array<bool, 3> interior;  ///< per edge opposite q_i: has a neighbouring face
-  };
   /// s (m) of face e at xe, optionally with ∇s_i (18) and ∇²s_i (18 × 18) per edge.
   Vec3 edge_values(int e, const LocalVector& xe, LocalVector* gradients,
-                   LocalMatrix* hessians) const;
+                   LocalMatrix* hessians) const override;
 
-  std::vector<Element> elements_;
+ private:
+  std::vector<std::array<bool, 3>> interior_;  ///< per face and edge: has a neighbouring face
 };
 
 }  // namespace progsim

@@ -8,8 +8,13 @@ enum class BendingModel {
   /// HingeBending: dihedral angles of interior edges (Grinspun et al. 2003, as in C-IPC and the
   /// PSQ seeds). Softer than the plate on right-triangle grids, and more so under refinement.
   hinge,
-  /// MidedgeBending: the mid-edge shape operator (Grinspun et al. 2006; Chen et al. 2018).
+  /// MidedgeBending: the mid-edge shape operator (Grinspun et al. 2006; Chen et al. 2018) with
+  /// each edge's normal the bisector of its faces. Exact on regular grids, stiff on irregular
+  /// ones.
   midedge,
+  /// FittedMidedgeBending: the same shape operator with each edge's normal fitted to the
+  /// curvature of its two faces' neighbourhoods. Converges on irregular meshes too.
+  midedge_fitted,
 };
 
 /// Isotropic shell material. SI units.

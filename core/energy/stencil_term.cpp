@@ -85,5 +85,6 @@ template class StencilTerm<2>;
 template class StencilTerm<3>;
 template class StencilTerm<4>;
 template class StencilTerm<6>;
+template class StencilTerm<12>;
 
 }  // namespace progsim

@@ -63,5 +63,6 @@ extern template class StencilTerm<2>;
 extern template class StencilTerm<3>;
 extern template class StencilTerm<4>;
 extern template class StencilTerm<6>;
+extern template class StencilTerm<12>;
 
 }  // namespace progsim

@@ -1,5 +1,6 @@
 #include "sim/shell_elastics.hpp"
 
+#include "energy/fitted_midedge_bending.hpp"
 #include "energy/gravity.hpp"
 #include "energy/hinge_bending.hpp"
 #include "energy/midedge_bending.hpp"
@@ -59,10 +60,13 @@ std::unique_ptr<EnergyTerm> membrane_term(const Positions& rest, const ShellSurf
 /// The bending term of `surface`, of the model its materials select (validate_scene() makes all
 /// bodies agree).
 std::unique_ptr<EnergyTerm> bending_term(const Positions& rest, const ShellSurface& surface) {
-  const bool midedge = !surface.materials.empty() &&
-                       surface.materials.front().bending_model == BendingModel::midedge;
-  if (midedge)
+  const BendingModel chosen =
+      surface.materials.empty() ? BendingModel::hinge : surface.materials.front().bending_model;
+  if (chosen == BendingModel::midedge)
     return std::make_unique<MidedgeBending>(rest, surface.faces, surface.hinges, surface.materials);
+  if (chosen == BendingModel::midedge_fitted)
+    return std::make_unique<FittedMidedgeBending>(rest, surface.faces, surface.hinges,
+                                                  surface.materials);
   return std::make_unique<HingeBending>(rest, surface.faces, surface.hinges, surface.materials);
 }
 

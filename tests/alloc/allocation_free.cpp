@@ -12,6 +12,7 @@
 
 #include "contact/collision_mesh.hpp"
 #include "contact/contact_potential.hpp"
+#include "energy/fitted_midedge_bending.hpp"
 #include "energy/hinge_bending.hpp"
 #include "energy/midedge_bending.hpp"
 #include "energy/neo_hookean_membrane.hpp"
@@ -127,12 +128,13 @@ TEST(AllocationFree, ProxyEnergyValueAndGradient) {
   }
 }
 
-TEST(AllocationFree, MidedgeBendingValueGradientAndHessian) {
-  // Mid-edge bending's per-face evaluation (18-DOF elements, PSD clamp) on 1 and 2 threads.
+/// The mid-edge terms' per-face evaluation (PSD clamp included) on 1 and 2 threads.
+template <class Term>
+void expect_allocation_free_bending() {
   const TriangleMesh sheet = make_grid(1.0, 1.0, 20, 20);
-  const MidedgeBending term(sheet.vertices, sheet.faces,
-                            build_topology(sheet.faces, sheet.num_vertices()).hinges,
-                            std::vector<ShellMaterial>(sheet.num_faces()));
+  const Term term(sheet.vertices, sheet.faces,
+                  build_topology(sheet.faces, sheet.num_vertices()).hinges,
+                  std::vector<ShellMaterial>(sheet.num_faces()));
   Vector x = as_dofs(sheet.vertices);
   for (int v = 0; v < sheet.num_vertices(); ++v) x[3 * v + 2] = 0.01 * (v % 7);
   Vector g = Vector::Zero(x.size());
@@ -148,6 +150,14 @@ TEST(AllocationFree, MidedgeBendingValueGradientAndHessian) {
     });
     EXPECT_EQ(count, 0) << threads << " thread(s)";
   }
+}
+
+TEST(AllocationFree, MidedgeBendingValueGradientAndHessian) {
+  expect_allocation_free_bending<MidedgeBending>();  // 18-DOF elements
+}
+
+TEST(AllocationFree, FittedMidedgeBendingValueGradientAndHessian) {
+  expect_allocation_free_bending<FittedMidedgeBending>();  // 36-DOF elements
 }
 
 TEST(AllocationFree, ContactBarrierWithinOneContactSet) {

@@ -2,7 +2,9 @@
 /// @file Flat test sheets and their isometric wrapping onto a cylinder, for the bending terms'
 /// closed-form cylinder energies.
 #include <cmath>
+#include <random>
 
+#include "mesh/mesh_generators.hpp"
 #include "mesh/triangle_mesh.hpp"
 
 namespace progsim::test_support {
@@ -44,6 +46,36 @@ inline TriangleMesh equilateral_sheet(int n) {
       }
     }
   return sheet;
+}
+
+/// make_grid's sheet (width × height, nx × ny quads) with every quad split along the same
+/// diagonal instead of alternating ones.
+inline TriangleMesh one_diagonal_grid(double width, double height, int nx, int ny) {
+  TriangleMesh mesh = make_grid(width, height, nx, ny);
+  int f = 0;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int v00 = j * (nx + 1) + i, v10 = v00 + 1, v01 = v00 + nx + 1, v11 = v01 + 1;
+      mesh.faces.row(f++) << v00, v10, v11;
+      mesh.faces.row(f++) << v00, v11, v01;
+    }
+  return mesh;
+}
+
+/// make_grid's sheet with its interior vertices from column `first_column` on moved in-plane by
+/// up to `jitter` of a cell (a fixed seed): an irregular mesh of the same outline.
+inline TriangleMesh jittered_grid(double width, double height, int nx, int ny, double jitter,
+                                  int first_column = 1) {
+  TriangleMesh mesh = make_grid(width, height, nx, ny);
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> noise(-jitter, jitter);
+  for (int j = 1; j < ny; ++j)
+    for (int i = first_column; i < nx; ++i) {
+      const int v = j * (nx + 1) + i;
+      mesh.vertices(v, 0) += noise(rng) * width / nx;
+      mesh.vertices(v, 1) += noise(rng) * height / ny;
+    }
+  return mesh;
 }
 
 }  // namespace progsim::test_support
