@@ -128,9 +128,9 @@ FittedMidedgeBending::FittedMidedgeBending(const Positions& rest, const Faces& f
     std::array<Vec3, 12> x;
     for (int k = 0; k < 12; ++k) x[k] = xe.segment<3>(3 * k);
     faces_[f].stiffness = midedge::face_stiffness(x[0], x[1], x[2], face_materials[f], f);
-    const double nu = face_materials[f].poisson_ratio;
     for (int i = 0; i < 3; ++i) el.interior[i] = across[f].vertex[i] >= 0;
-    const midedge::QuadraticFit own({x[0], x[1], x[2], x[3], x[4], x[5]}, el.interior, nu, f);
+    const midedge::QuadraticFit own({x[0], x[1], x[2], x[3], x[4], x[5]}, el.interior,
+                                    face_materials[f].poisson_ratio);
     el.weights.setZero();
     for (int i = 0; i < 3; ++i) {
       if (!el.interior[i]) continue;  // boundary: the face's own normal, s_i ≡ 0
@@ -140,7 +140,10 @@ FittedMidedgeBending::FittedMidedgeBending(const Positions& rest, const Faces& f
           across[g].vertex[corner_of(faces, g, faces(f, b))] >= 0,
           across[g].vertex[corner_of(faces, g, faces(f, a))] >= 0, true};
       const midedge::QuadraticFit fit({x[b], x[a], x[3 + i], x[6 + 2 * i], x[7 + 2 * i], x[i]},
-                                      g_interior, nu, g);
+                                      g_interior, face_materials[g].poisson_ratio);
+      // Without both fits the edge keeps the bisector (φ = 0, MidedgeBending's normal), on
+      // both of its faces alike.
+      if (!own.unique || !fit.unique) continue;
       const Mat2 frame_f = edge_frame(own.corners, a, b, i, true);
       const Mat2 frame_g = edge_frame(fit.corners, 1, 0, 2, false);
       // φ_i = ½ (ψ_f − ψ_g), ψ = ⟨M, H⟩, H = ½ (κ_f + κ_g) in the edge's frame.

@@ -31,7 +31,9 @@ namespace progsim {
 /// 2 ℓ sin(θ/2) (ℓ the far vertex's height over the hinge's edge; to first order its height
 /// over the face's plane, and bounded at a full fold). So φ_i is a constant linear combination
 /// of twelve hinge quantities of the face's 12-vertex neighbourhood, and shared: φ_g = −φ_f.
-/// Boundary edges keep the face's own normal (s_i = 0), as MidedgeBending does.
+/// Boundary edges keep the face's own normal (s_i = 0), as MidedgeBending does; an edge where
+/// either face's fit is not unique (its six points on one conic, e.g. one circle) keeps the
+/// bisector (φ = 0).
 ///
 /// Each element is a face, the three vertices across its edges and, for each neighbour, the
 /// two vertices across its other edges (36 DOFs; missing ones repeat a face vertex and carry
@@ -45,7 +47,7 @@ class FittedMidedgeBending : public EdgeQuadraticBending<12> {
   /// @param face_materials one material per face (|F|): E (or E_b), ν, thickness t (m)
   /// @throws Error(invalid_argument) if face_materials.size() ≠ |F|, an index is out of range
   ///         or a hinge does not match its faces; Error(invalid_mesh) if a rest face has zero
-  ///         area or a face and its neighbours admit no unique quadratic fit.
+  ///         area.
   FittedMidedgeBending(const Positions& rest, const Faces& faces, const std::vector<Hinge>& hinges,
                        const std::vector<ShellMaterial>& face_materials);
 

@@ -54,11 +54,14 @@ std::vector<Across> faces_across(const Faces& faces, const std::vector<Hinge>& h
 /// Cartesian coordinates of the face's plane, η_k the height of p_k over the plane. Across a
 /// boundary edge (no p_k) the free edge's condition κ_nn + ν κ_tt = 0 stands in, and K_k = 0.
 struct QuadraticFit {
-  std::array<Mat2, 3> curvatures;  ///< K_k (1/m²)
+  std::array<Mat2, 3> curvatures;  ///< K_k (1/m²); zero unless `unique`
   std::array<Vec2, 3> corners;     ///< q0, q1, q2 in the plane's coordinates (q0 at the origin)
+  /// False where the six points admit no well-conditioned quadratic (the fit's smallest
+  /// singular value below 1e-6 of its largest: e.g. all six on one circle, or a degenerate
+  /// face).
+  bool unique = false;
   /// @param x q0, q1, q2, p0, p1, p2 at rest (p_k ignored where !interior[k])
-  /// Error(invalid_mesh) naming face f if the six points admit no unique quadratic.
-  QuadraticFit(const std::array<Vec3, 6>& x, const std::array<bool, 3>& interior, double nu, int f);
+  QuadraticFit(const std::array<Vec3, 6>& x, const std::array<bool, 3>& interior, double nu);
 };
 
 }  // namespace progsim::midedge

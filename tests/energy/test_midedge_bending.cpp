@@ -250,3 +250,29 @@ TEST(FittedMidedgeBending, SheetsRolledAboutAnyAxisConvergeToThePlateEnergy) {
     }
   }
 }
+
+TEST(FittedMidedgeBending, EdgesWithoutAUniqueFitKeepTheBisector) {
+  // A regular hexagon meshed as a central triangle and three ears: the central face and the
+  // three vertices across its edges lie on one circle, so no unique quadratic passes through
+  // them. The term still builds, and every interior edge keeps the bisector: the energy is
+  // MidedgeBending's.
+  TriangleMesh hexagon;
+  hexagon.vertices.resize(6, 3);
+  for (int k = 0; k < 6; ++k)
+    hexagon.vertices.row(k) << std::cos(k * kPi / 3), std::sin(k * kPi / 3), 0.0;
+  hexagon.faces.resize(4, 3);
+  hexagon.faces << 0, 2, 4, 0, 1, 2, 2, 3, 4, 4, 5, 0;
+  const std::vector<ShellMaterial> materials = mt::varied_materials(4, 29);
+  const FittedMidedgeBending fitted = make_term<FittedMidedgeBending>(hexagon, materials);
+  const MidedgeBending bisected = make_midedge(hexagon, materials);
+  const Vector x = mt::perturbed(hexagon.vertices, 0.2, 30);
+  ASSERT_GT(bisected.value(x), 0.0);
+  EXPECT_NEAR(fitted.value(x), bisected.value(x), 1e-12 * bisected.value(x));
+  // Off the circle (one ear's tip moved out) the fits are unique again and the energies differ.
+  TriangleMesh irregular = hexagon;
+  irregular.vertices.row(1) *= 1.3;
+  const Vector y = mt::perturbed(irregular.vertices, 0.2, 30);
+  EXPECT_GT(std::abs(make_term<FittedMidedgeBending>(irregular, materials).value(y) -
+                     make_midedge(irregular, materials).value(y)),
+            1e-6 * make_midedge(irregular, materials).value(y));
+}
