@@ -3,6 +3,18 @@
 #include "energy/psd_projection.hpp"
 
 namespace progsim {
+namespace {
+
+/// Jᵀ Q J for J's columns ∇s_0, ∇s_1, ∇s_2.
+template <int N>
+Eigen::Matrix<double, N, N> form_of_gradients(const Eigen::Matrix<double, N, 1> (&ds_dx)[3],
+                                              const Mat3& q) {
+  Eigen::Matrix<double, N, 3> jacobian;
+  for (int i = 0; i < 3; ++i) jacobian.col(i) = ds_dx[i];
+  return jacobian * q * jacobian.transpose();
+}
+
+}  // namespace
 
 template <int K>
 double EdgeQuadraticBending<K>::element_value(int e, const LocalVector& xe) const {
@@ -26,15 +38,19 @@ void EdgeQuadraticBending<K>::element_hessian(int e, const LocalVector& xe, Loca
   const Mat3& q = faces_[e].stiffness;
   const Vec3 force = q * ds;
   // ∇²E = Σ_ij Q_ij ∇s_i ∇s_jᵀ + Σ_i (Q Δs)_i ∇²s_i.
-  Eigen::Matrix<double, 3 * K, 3> jacobian;
-  for (int i = 0; i < 3; ++i) jacobian.col(i) = ds_dx[i];
-  h.noalias() = jacobian * q * jacobian.transpose();
+  h.noalias() = form_of_gradients<3 * K>(ds_dx, q);
   for (int i = 0; i < 3; ++i) h += force[i] * d2s_dx2[i];
 }
 
 template <int K>
 void EdgeQuadraticBending<K>::element_projected_hessian(int e, const LocalVector& xe,
                                                         LocalMatrix& h) const {
+  if (gauss_newton_) {
+    LocalVector ds_dx[3];
+    edge_values(e, xe, ds_dx, nullptr);
+    h.noalias() = form_of_gradients<3 * K>(ds_dx, faces_[e].stiffness);  // Jᵀ Q J
+    return;
+  }
   element_hessian(e, xe, h);
   // At s = s̄ the Hessian is Jᵀ Q J with Q PSD: nothing to clamp.
   if (edge_values(e, xe, nullptr, nullptr) != faces_[e].rest_values) project_psd(h);

@@ -23,6 +23,13 @@ class EdgeQuadraticBending : public StencilTerm<K> {
   /// The rest values s̄ (m) of face f's three edge quantities s_i (0 on boundary edges).
   const Vec3& rest_edge_values(int f) const { return faces_[f].rest_values; }
 
+  /// With `on`, the projected Hessian is the Gauss–Newton Jᵀ Q J (J = ∇s): PSD by itself, equal
+  /// to the exact Hessian at rest, and free of the second derivatives of s and of an
+  /// eigen-decomposition, but without the geometric stiffness of bent faces (as
+  /// HingeProjection::gauss_newton; for dynamic steps, whose inertia keeps the Newton matrix
+  /// positive definite). Off (the default): the per-element eigenvalue clamp.
+  void set_gauss_newton(bool on) { gauss_newton_ = on; }
+
  protected:
   EdgeQuadraticBending(std::vector<Stencil> stencils, int num_vertices)
       : StencilTerm<K>(std::move(stencils), num_vertices) {}
@@ -43,6 +50,9 @@ class EdgeQuadraticBending : public StencilTerm<K> {
   void element_projected_hessian(int e, const LocalVector& xe, LocalMatrix& h) const override;
 
   std::vector<FaceForm> faces_;
+
+ private:
+  bool gauss_newton_ = false;
 };
 
 extern template class EdgeQuadraticBending<6>;

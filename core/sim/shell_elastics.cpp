@@ -91,6 +91,12 @@ ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, b
     // curvature term is the only stiffness a bent, unloaded shell has.
     if (hinge && scene.mode == StepMode::dynamic)
       hinge->set_projection(HingeProjection::gauss_newton);
+    if (scene.mode == StepMode::dynamic) {  // the mid-edge models' Jᵀ Q J likewise
+      if (auto* midedge = dynamic_cast<EdgeQuadraticBending<6>*>(out.terms.back().get()))
+        midedge->set_gauss_newton(true);
+      if (auto* fitted = dynamic_cast<EdgeQuadraticBending<12>*>(out.terms.back().get()))
+        fitted->set_gauss_newton(true);
+    }
   }
   if (fx.has(Effect::elasticity))  // VPD §3.1.3: the volumetric bodies' own elastics
     out.terms.push_back(std::make_unique<TetElastics>(rest, model.tets, model.tet_materials));

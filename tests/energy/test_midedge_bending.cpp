@@ -144,6 +144,23 @@ TEST(MidedgeBending, GridRolledAlongItsAxisCarriesThePlateEnergy) {
   }
 }
 
+TYPED_TEST(MidedgeTerms, GaussNewtonProjectionIsPsdAndExactAtRest) {
+  // Jᵀ Q J (dynamic scenes): PSD everywhere, the exact Hessian at rest, and not the exact one
+  // (nor its clamp) away from it, where the second derivatives of s are left out.
+  const TriangleMesh patch = make_cylinder(0.4, 0.6, 2.0, 4, 3);
+  TypeParam term = make_term<TypeParam>(patch, mt::varied_materials(patch.num_faces(), 31));
+  term.set_gauss_newton(true);
+  const Vector x = mt::perturbed(patch.vertices, 0.05, 32);
+  const Eigen::MatrixXd gn = mt::assembled_hessian(term, x, true);
+  const Eigen::VectorXd eigenvalues = mt::eigenvalues(gn);
+  EXPECT_GE(eigenvalues.minCoeff(), -1e-8 * eigenvalues.maxCoeff());
+  EXPECT_GT(mt::relative_error(gn, mt::assembled_hessian(term, x, false), 1e-15), 1e-3);
+  const Vector at_rest = as_dofs(patch.vertices);
+  EXPECT_LT(mt::relative_error(mt::assembled_hessian(term, at_rest, true),
+                               mt::assembled_hessian(term, at_rest, false), 1e-15),
+            1e-12);
+}
+
 TYPED_TEST(MidedgeTerms, RejectsBadInput) {
   const TriangleMesh mesh = make_grid(1.0, 1.0, 2, 2);
   const std::vector<Hinge> hinges = build_topology(mesh.faces, mesh.num_vertices()).hinges;
