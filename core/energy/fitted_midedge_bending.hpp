@@ -38,7 +38,8 @@ namespace progsim {
 /// Each element is a face, the three vertices across its edges and, for each neighbour, the
 /// two vertices across its other edges (36 DOFs; missing ones repeat a face vertex and carry
 /// no derivative). Derivatives are exact and closed form (chain rule through the hinge
-/// quantities of MidedgeBending). PSD projection: the per-element eigenvalue clamp.
+/// quantities of MidedgeBending). PSD projection: the per-element eigenvalue clamp, or the
+/// Gauss–Newton Jᵀ Q J (EdgeQuadraticBending::set_gauss_newton; dynamic scenes).
 class FittedMidedgeBending : public EdgeQuadraticBending<12> {
  public:
   /// @param rest rest positions (|V| × 3), m; defines Q_f, s̄ and the fits

@@ -36,7 +36,8 @@ namespace progsim {
 ///
 /// Each element is a face and the three vertices across its edges (18 DOFs). Derivatives are
 /// exact and closed-form (∇θ, ∇²θ as in HingeBending; h from ‖e × w‖²/‖e‖²), finite while the
-/// current faces have non-zero area. PSD projection: the per-element eigenvalue clamp.
+/// current faces have non-zero area. PSD projection: the per-element eigenvalue clamp, or the
+/// Gauss–Newton Jᵀ Q J (EdgeQuadraticBending::set_gauss_newton; dynamic scenes).
 ///
 /// Accuracy (tests/sim/test_bending_convergence.cpp): a cantilever under its weight matches
 /// beam theory to 0.2 % on right-triangle grids of either diagonal pattern, but is 5–6 % too
