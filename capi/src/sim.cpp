@@ -17,10 +17,6 @@ bool animated_progressively(const Scene& scene, int num_levels) {
   return num_levels > 1 && scene.mode == StepMode::dynamic;
 }
 
-bool all_solid(const Scene& scene) {
-  return std::all_of(scene.bodies.begin(), scene.bodies.end(), is_solid);
-}
-
 /// The driver of a solid's scene on `hierarchy` (a solid's, counted as in use by the caller).
 void build_solid_driver(ps_sim& sim, const Scene& scene, const ps_hierarchy& hierarchy) {
   if (hierarchy.num_levels() == 1) {  // a direct simulation builds its own one-level hierarchy
@@ -67,7 +63,7 @@ std::unique_ptr<ps_sim> make_sim(const ps_hierarchy* hierarchy, Scene scene) {
 /// "progressive" section asks for), or the hierarchy its driver builds from its bodies (shells,
 /// or shells and solids on one level).
 std::unique_ptr<ps_sim> sim_from_scene(Scene scene) {
-  if (!scene.bodies.empty() && all_solid(scene)) {
+  if (all_solid(scene)) {
     auto owned = std::make_unique<ps_hierarchy>(
         std::make_shared<const TetHierarchy>(build_scene_tet_hierarchy(scene)));
     auto sim = build_sim(std::move(scene), owned.get());

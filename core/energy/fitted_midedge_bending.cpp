@@ -112,13 +112,15 @@ double inner(const Mat2& a, const Mat2& b) {
 FittedMidedgeBending::FittedMidedgeBending(const Positions& rest, const Faces& faces,
                                            const std::vector<Hinge>& hinges,
                                            const std::vector<ShellMaterial>& face_materials)
-    : EdgeQuadraticBending<12>(
-          face_stencils(faces, midedge::faces_across(faces, hinges, static_cast<int>(rest.rows()),
-                                                     face_materials.size())),
-          static_cast<int>(rest.rows())) {
+    : FittedMidedgeBending(rest, faces, face_materials,
+                           midedge::faces_across(faces, hinges, static_cast<int>(rest.rows()),
+                                                 face_materials.size())) {}
+
+FittedMidedgeBending::FittedMidedgeBending(const Positions& rest, const Faces& faces,
+                                           const std::vector<ShellMaterial>& face_materials,
+                                           const std::vector<midedge::Across>& across)
+    : EdgeQuadraticBending<12>(face_stencils(faces, across), static_cast<int>(rest.rows())) {
   const int num_faces = static_cast<int>(faces.rows());
-  const std::vector<midedge::Across> across =
-      midedge::faces_across(faces, hinges, static_cast<int>(rest.rows()), face_materials.size());
   const Vector rest_dofs = as_dofs(rest);
   faces_.resize(num_faces);
   turns_.resize(num_faces);

@@ -9,6 +9,9 @@
 #include "mesh/mesh_topology.hpp"
 
 namespace progsim {
+namespace midedge {
+struct Across;
+}  // namespace midedge
 
 /// Bending energy summed over faces f (q0, q1, q2), as MidedgeBending's
 ///   E_f = ½ (s − s̄)ᵀ Q_f (s − s̄),  s_i = 2 h_i sin(θ_i/2 + φ_i),
@@ -60,6 +63,11 @@ class FittedMidedgeBending : public EdgeQuadraticBending<12> {
                    LocalMatrix* hessians) const override;
 
  private:
+  /// The public constructor's, with what lies across each face's edges found once.
+  FittedMidedgeBending(const Positions& rest, const Faces& faces,
+                       const std::vector<ShellMaterial>& face_materials,
+                       const std::vector<midedge::Across>& across);
+
   /// The twelve hinge quantities τ_j of an element (see the .cpp) that φ combines.
   static constexpr int kQuantities = 12;
   /// How a face's edge normals are turned.

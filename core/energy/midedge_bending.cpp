@@ -43,13 +43,15 @@ std::vector<StencilTerm<6>::Stencil> face_stencils(const Faces& faces,
 MidedgeBending::MidedgeBending(const Positions& rest, const Faces& faces,
                                const std::vector<Hinge>& hinges,
                                const std::vector<ShellMaterial>& face_materials)
-    : EdgeQuadraticBending<6>(
-          face_stencils(faces, midedge::faces_across(faces, hinges, static_cast<int>(rest.rows()),
-                                                     face_materials.size())),
-          static_cast<int>(rest.rows())) {
+    : MidedgeBending(rest, faces, face_materials,
+                     midedge::faces_across(faces, hinges, static_cast<int>(rest.rows()),
+                                           face_materials.size())) {}
+
+MidedgeBending::MidedgeBending(const Positions& rest, const Faces& faces,
+                               const std::vector<ShellMaterial>& face_materials,
+                               const std::vector<midedge::Across>& across)
+    : EdgeQuadraticBending<6>(face_stencils(faces, across), static_cast<int>(rest.rows())) {
   const Eigen::Index num_faces = faces.rows();
-  const std::vector<midedge::Across> across =
-      midedge::faces_across(faces, hinges, static_cast<int>(rest.rows()), face_materials.size());
   const Vector rest_dofs = as_dofs(rest);
   faces_.resize(num_faces);
   interior_.resize(num_faces);

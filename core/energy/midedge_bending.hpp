@@ -11,6 +11,9 @@
 #include "mesh/mesh_topology.hpp"
 
 namespace progsim {
+namespace midedge {
+struct Across;
+}  // namespace midedge
 
 /// Bending energy summed over faces f with vertices (q0, q1, q2):
 ///   E_f = (t³/12) Ā_f [ (α/2) tr²(M) + β tr(M²) ],   M = ā⁻¹ (b − b̄)
@@ -63,6 +66,11 @@ class MidedgeBending : public EdgeQuadraticBending<6> {
                    LocalMatrix* hessians) const override;
 
  private:
+  /// The public constructor's, with what lies across each face's edges found once.
+  MidedgeBending(const Positions& rest, const Faces& faces,
+                 const std::vector<ShellMaterial>& face_materials,
+                 const std::vector<midedge::Across>& across);
+
   std::vector<std::array<bool, 3>> interior_;  ///< per face and edge: has a neighbouring face
 };
 

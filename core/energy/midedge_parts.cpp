@@ -183,13 +183,12 @@ QuadraticFit::QuadraticFit(const std::array<Vec3, 6>& x, const std::array<bool, 
   for (int k = 0; k < 3; ++k) g.row(k) = fit_row(x, corners, jinv, k, interior[k], nu);
   // Conditioned by the singular values (FullPivLU::rcond() estimates 0.25 for an exactly
   // singular G, e.g. six points on one circle); false for NaN (a degenerate face) too.
-  const Eigen::JacobiSVD<Mat3> svd(g);
+  const Eigen::JacobiSVD<Mat3> svd(g, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Vec3 sigma = svd.singularValues();
   unique = jinv.allFinite() && sigma.allFinite() && sigma[2] >= 1e-6 * sigma[0];
   if (!unique) return;
-  const Eigen::FullPivLU<Mat3> lu(g);
   // c = G⁻¹ η, κ_ξ = Σ_j c_j ∇²_ξ(λ_{j+1} λ_{j+2}), κ = J⁻ᵀ κ_ξ J⁻¹ (Cartesian).
-  const Mat3 ginv = lu.inverse();
+  const Mat3 ginv = svd.matrixV() * sigma.cwiseInverse().asDiagonal() * svd.matrixU().transpose();
   const std::array<Mat2, 3> h = product_hessians();
   for (int k = 0; k < 3; ++k) {
     Mat2 xi = Mat2::Zero();

@@ -1,14 +1,12 @@
 #include "progressive/progressive_animation.hpp"
 
-#include <algorithm>
-
 #include "progressive/progressive_dynamics.hpp"
 #include "progressive/volumetric_dynamics.hpp"
 
 namespace progsim {
 
 std::unique_ptr<ProgressiveAnimation> make_progressive_animation(Scene scene) {
-  if (!std::all_of(scene.bodies.begin(), scene.bodies.end(), is_solid))
+  if (!all_solid(scene))
     return std::make_unique<ProgressiveDynamics>(std::move(scene));  // refuses mixed scenes
   auto hierarchy = std::make_shared<const TetHierarchy>(build_scene_tet_hierarchy(scene));
   return std::make_unique<VolumetricDynamics>(std::move(scene), std::move(hierarchy));

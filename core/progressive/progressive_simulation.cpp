@@ -39,8 +39,7 @@ MeshHierarchy checked_scene_hierarchy(const Scene& scene, HierarchyProgress prog
   options.coarse_vertex_counts = scene_coarse_counts(scene.progressive, model.rest.num_vertices());
   options.vertex_groups = vertex_handles(scene, model);
   if (std::any_of(scene.bodies.begin(), scene.bodies.end(), is_solid)) {
-    const bool mixed = !std::all_of(scene.bodies.begin(), scene.bodies.end(), is_solid);
-    if (mixed && !options.coarse_vertex_counts.empty())
+    if (mixes_shells_and_solids(scene) && !options.coarse_vertex_counts.empty())
       fail(Status::unsupported, scene.name +
                                     ": the scene mixes shells and volumetric (tet) bodies, which "
                                     "progressive runs do not simulate on several levels yet: "

@@ -1,6 +1,7 @@
 #pragma once
 /// @file A scene: bodies, materials, handles, effects and solver settings. Parsed from JSON
 /// (scene_json.hpp) or built in code; validated before anything is simulated.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -308,6 +309,16 @@ void validate_motion(const HandleMotion& motion, const std::string& where,
 /// Whether the body is a volumetric solid (it has tets).
 inline bool is_solid(const Body& body) {
   return body.tets.rows() > 0;
+}
+
+/// Whether the scene has bodies and every one is a volumetric solid.
+inline bool all_solid(const Scene& scene) {
+  return !scene.bodies.empty() && std::all_of(scene.bodies.begin(), scene.bodies.end(), is_solid);
+}
+
+/// Whether the scene has both shells and volumetric solids.
+inline bool mixes_shells_and_solids(const Scene& scene) {
+  return std::any_of(scene.bodies.begin(), scene.bodies.end(), is_solid) && !all_solid(scene);
 }
 
 /// The material of a solid body's tets: its material's E, ν and ρ with its solid_model.

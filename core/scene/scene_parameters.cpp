@@ -1,6 +1,5 @@
 #include "scene/scene_parameters.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -20,9 +19,7 @@ struct Accessor {
 /// Every body's field: one value for all. In a scene that mixes shells and solids a value would
 /// cross kinds (a cloth's modulus onto a jelly), so there it is refused.
 std::vector<double*> material_slots(Scene& scene, double ShellMaterial::*field) {
-  const auto& bodies = scene.bodies;
-  if (std::any_of(bodies.begin(), bodies.end(), is_solid) &&
-      !std::all_of(bodies.begin(), bodies.end(), is_solid))
+  if (mixes_shells_and_solids(scene))
     fail(Status::unsupported,
          "material parameters set one value on every body, and this scene mixes shells and "
          "volumetric (tet) bodies: set each body's material in the scene");

@@ -27,10 +27,15 @@ struct ShellSurface {
   std::vector<Hinge> hinges;
 };
 
-/// The shell bodies' faces of `model`, whose bodies are those of `scene`.
+/// What the shell terms are built on: the model's own faces, or those of a ShellSurface.
+struct SurfaceView {
+  const Faces& faces;
+  const std::vector<ShellMaterial>& materials;
+  const std::vector<Hinge>& hinges;
+};
+
+/// The shell bodies' faces of a `model` with solids, whose bodies are those of `scene`.
 ShellSurface shell_surface(const Scene& scene, const ShellModel& model) {
-  if (model.tets.rows() == 0)
-    return {model.rest.faces, model.face_materials, model.topology.hinges};
   ShellSurface out;
   Eigen::Index rows = 0;
   for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b)
@@ -50,7 +55,7 @@ ShellSurface shell_surface(const Scene& scene, const ShellModel& model) {
 }
 
 /// The membrane term of `surface` under the given model.
-std::unique_ptr<EnergyTerm> membrane_term(const Positions& rest, const ShellSurface& surface,
+std::unique_ptr<EnergyTerm> membrane_term(const Positions& rest, const SurfaceView& surface,
                                           MembraneModel membrane) {
   if (membrane == MembraneModel::tension_field)
     return std::make_unique<TensionFieldMembrane>(rest, surface.faces, surface.materials);
@@ -58,8 +63,8 @@ std::unique_ptr<EnergyTerm> membrane_term(const Positions& rest, const ShellSurf
 }
 
 /// The bending term of `surface`, of the model its materials select (validate_scene() makes all
-/// bodies agree).
-std::unique_ptr<EnergyTerm> bending_term(const Positions& rest, const ShellSurface& surface) {
+/// shells agree).
+std::unique_ptr<EnergyTerm> bending_term(const Positions& rest, const SurfaceView& surface) {
   const BendingModel chosen =
       surface.materials.empty() ? BendingModel::hinge : surface.materials.front().bending_model;
   if (chosen == BendingModel::midedge)
@@ -77,8 +82,13 @@ ShellElastics make_shell_elastics(const Scene& scene, const ShellModel& model, b
   ShellElastics out;
   const EffectSet& fx = scene.effects;
   const Positions& rest = model.rest.vertices;
-  const bool shells = fx.has(Effect::membrane) || fx.has(Effect::bending);
-  const ShellSurface surface = shells ? shell_surface(scene, model) : ShellSurface{};
+  // Only a model with solids needs its shell faces gathered; otherwise the terms take its own.
+  const bool gather =
+      model.tets.rows() > 0 && (fx.has(Effect::membrane) || fx.has(Effect::bending));
+  const ShellSurface shells = gather ? shell_surface(scene, model) : ShellSurface{};
+  const SurfaceView surface =
+      gather ? SurfaceView{shells.faces, shells.materials, shells.hinges}
+             : SurfaceView{model.rest.faces, model.face_materials, model.topology.hinges};
   if (fx.has(Effect::membrane)) out.terms.push_back(membrane_term(rest, surface, membrane));
   if (fx.has(Effect::bending)) {
     out.terms.push_back(bending_term(rest, surface));

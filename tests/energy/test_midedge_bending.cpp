@@ -33,12 +33,6 @@ MidedgeBending make_midedge(const TriangleMesh& rest, const std::vector<ShellMat
   return make_term<MidedgeBending>(rest, materials);
 }
 
-/// The mid-edge terms, with bisected or fitted edge normals.
-template <class Term>
-class MidedgeTerms : public ::testing::Test {};
-using MidedgeModels = ::testing::Types<MidedgeBending, FittedMidedgeBending>;
-TYPED_TEST_SUITE(MidedgeTerms, MidedgeModels);
-
 /// Kirchhoff plate energy of a cylinder of radius r over area a: (D/2) a / r²,
 /// D = E t³/(12(1 − ν²)) (the other principal curvature is held at 0).
 double cylinder_plate_energy(const ShellMaterial& m, double area, double r) {
@@ -48,6 +42,12 @@ double cylinder_plate_energy(const ShellMaterial& m, double area, double r) {
 }
 
 }  // namespace
+
+/// The mid-edge terms, with bisected or fitted edge normals.
+template <class Term>
+class MidedgeTerms : public ::testing::Test {};
+using MidedgeModels = ::testing::Types<MidedgeBending, FittedMidedgeBending>;
+TYPED_TEST_SUITE(MidedgeTerms, MidedgeModels);
 
 TYPED_TEST(MidedgeTerms, DerivativesMatchFiniteDifferencesAtRandomStates) {
   const TriangleMesh grid = make_grid(1.0, 1.0, 3, 3);

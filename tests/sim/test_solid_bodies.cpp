@@ -15,6 +15,7 @@
 #include "support/solid_box.hpp"
 
 using namespace progsim;
+using progsim::test_support::min_tet_determinant;
 using progsim::test_support::solid_box;
 
 namespace {
@@ -32,17 +33,6 @@ Scene solid_scene(Body body, StepMode mode, double h, double duration) {
   s.effects.enable(Effect::gravity);
   s.bodies.push_back(std::move(body));
   return s;
-}
-
-/// Smallest det of the tets' edge matrices at x (positive: no tet inverted or flat).
-double min_tet_determinant(const Tets& tets, const Eigen::Map<const Positions>& x) {
-  double lowest = INFINITY;
-  for (Eigen::Index t = 0; t < tets.rows(); ++t) {
-    Mat3 d;
-    for (int k = 0; k < 3; ++k) d.col(k) = (x.row(tets(t, k + 1)) - x.row(tets(t, 0))).transpose();
-    lowest = std::min(lowest, d.determinant());
-  }
-  return lowest;
 }
 
 /// Tip deflection (mean over the tip face's vertices) of a 1 × 0.1 × 0.1 m steel-stiff beam

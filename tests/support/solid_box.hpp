@@ -1,5 +1,8 @@
 #pragma once
 /// @file A solid (tet) box body for tests that simulate volumetric bodies.
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "mesh/tet_boundary.hpp"
@@ -24,6 +27,19 @@ inline Body solid_box(const Vec3& size, int nx, int ny, int nz, const Vec3& shif
   b.material.density = 1000.0;
   b.solid_model = model;
   return b;
+}
+
+/// Smallest det of the tets' edge matrices at positions x (|V| × 3, any Eigen rows expression):
+/// positive when no tet is inverted or flat.
+template <class Rows>
+double min_tet_determinant(const Tets& tets, const Rows& x) {
+  double lowest = INFINITY;
+  for (Eigen::Index t = 0; t < tets.rows(); ++t) {
+    Mat3 d;
+    for (int k = 0; k < 3; ++k) d.col(k) = (x.row(tets(t, k + 1)) - x.row(tets(t, 0))).transpose();
+    lowest = std::min(lowest, d.determinant());
+  }
+  return lowest;
 }
 
 }  // namespace progsim::test_support
